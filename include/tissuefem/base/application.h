@@ -1,0 +1,30 @@
+#pragma once
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace tissuefem
+{
+  using namespace dealii;
+
+  /// Declares every parameter tissuefem knows, with its documentation.
+  void
+  declare_all_parameters(ParameterHandler &prm);
+
+  /**
+   * Reads @p file into @p prm, then applies @p overrides, each
+   * "Subsection/Name=value". Throws InputError naming the file or parameter
+   * on any problem.
+   */
+  void
+  read_parameters(ParameterHandler               &prm,
+                  const std::string              &file,
+                  const std::vector<std::string> &overrides);
+
+  /// The command-line program; returns the process exit status.
+  int
+  run_command_line(int argc, char **argv);
+} // namespace tissuefem

@@ -1,0 +1,60 @@
+#pragma once
+
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/function_parser.h>
+#include <deal.II/base/point.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace tissuefem
+{
+  using namespace dealii;
+
+  /// Splits @p text at @p separator and trims white space from each piece.
+  std::vector<std::string>
+  split_and_trim(const std::string &text, const char separator);
+
+  /**
+   * Splits a list of entries separated by a single '|'. A '||' (muparser's
+   * logical or) is kept inside its entry.
+   */
+  std::vector<std::string>
+  split_entries(const std::string &text);
+
+  /// The muparser variable names for points in @p dim dimensions plus time.
+  std::string
+  expression_variables(const unsigned int dim);
+
+  /**
+   * A muparser function of (x, y, z, t) (as many space variables as @p dim)
+   * with @p n_components components given as expressions separated by ';'.
+   * A single expression is used for every component. Errors in the
+   * expressions are reported as InputError naming @p parameter.
+   */
+  template <int dim>
+  std::unique_ptr<FunctionParser<dim>>
+  make_function(const std::string &expressions,
+                const unsigned int n_components,
+                const std::string &parameter);
+
+  /// A point from "x, y[, z]" with exactly @p dim coordinates.
+  template <int dim>
+  Point<dim>
+  parse_point(const std::string &text, const std::string &parameter);
+
+  /// Points separated by ';', each parsed by parse_point().
+  template <int dim>
+  std::vector<Point<dim>>
+  parse_points(const std::string &text, const std::string &parameter);
+
+  /// The message of a deal.II exception, without its source location, on
+  /// one line.
+  std::string
+  one_line_message(const ExceptionBase &exception);
+
+  /// Collapses new lines and runs of white space into single spaces.
+  std::string
+  squeeze_whitespace(const std::string &text);
+} // namespace tissuefem

@@ -1,0 +1,105 @@
+#pragma once
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <tissuefem/base/input_error.h>
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+
+namespace tissuefem
+{
+  /**
+   * A table of named implementations of one interface (materials, time
+   * integrators, problems, ...). Each implementation adds itself from its own
+   * source file through a static Registrar object, so the list of choices a
+   * parameter file may name is generated from what is compiled in, and adding
+   * an implementation touches no central list.
+   *
+   * @p Interface is the base class; @p Factory is the signature of the
+   * function that creates one, e.g.
+   * std::unique_ptr<Interface>(const ParameterHandler &).
+   */
+  template <typename Interface, typename... FactoryArguments>
+  class Registry
+  {
+  public:
+    using Factory =
+      std::function<std::unique_ptr<Interface>(FactoryArguments...)>;
+    using Declarer = std::function<void(dealii::ParameterHandler &)>;
+
+    struct Entry
+    {
+      std::string description;
+      Declarer    declare_parameters;
+      Factory     create;
+    };
+
+    /// The single table for this interface.
+    static Registry &
+    instance()
+    {
+      static Registry registry;
+      return registry;
+    }
+
+    void
+    add(const std::string &name,
+        const std::string &description,
+        const Declarer    &declarer,
+        const Factory     &factory)
+    {
+      entries[name] = Entry{description, declarer, factory};
+    }
+
+    /// Names separated by '|', for a Patterns::Selection.
+    std::string
+    selection_pattern() const
+    {
+      std::string result;
+      for (const auto &[name, entry] : entries)
+        result += (result.empty() ? "" : "|") + name;
+      return result;
+    }
+
+    /// One line per choice: "name: description", for parameter documentation.
+    std::string
+    documentation() const
+    {
+      std::string result;
+      for (const auto &[name, entry] : entries)
+        result += "'" + name + "': " + entry.description + " ";
+      return result;
+    }
+
+    /// Lets every registered implementation declare its own parameters.
+    void
+    declare_parameters(dealii::ParameterHandler &prm) const
+    {
+      for (const auto &[name, entry] : entries)
+        if (entry.declare_parameters)
+          entry.declare_parameters(prm);
+    }
+
+    std::unique_ptr<Interface>
+    create(const std::string &name, FactoryArguments... arguments) const
+    {
+      const auto it = entries.find(name);
+      if (it == entries.end())
+        throw InputError("'" + name + "' is not a known choice; known are: " +
+                         selection_pattern());
+      return it->second.create(arguments...);
+    }
+
+    const std::map<std::string, Entry> &
+    all() const
+    {
+      return entries;
+    }
+
+  private:
+    std::map<std::string, Entry> entries;
+  };
+} // namespace tissuefem

@@ -1,0 +1,69 @@
+#pragma once
+
+#include <deal.II/base/function_parser.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/fe/component_mask.h>
+#include <deal.II/grid/tria.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace tissuefem::boundary
+{
+  using namespace dealii;
+
+  /**
+   * The 'Boundary conditions' subsection: prescribed displacements and
+   * tractions by boundary id, body forces and initial state, all as muparser
+   * expressions of the reference position (x, y, z) and time t.
+   */
+  struct BoundaryParameters
+  {
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
+
+    std::string dirichlet, neumann, body_force, gravity, initial_displacement,
+      initial_velocity;
+  };
+
+  template <int dim>
+  class BoundaryConditions
+  {
+  public:
+    /// Parses every expression for @p dim; throws InputError naming the
+    /// parameter on malformed input.
+    explicit BoundaryConditions(const BoundaryParameters &parameters);
+
+    struct Dirichlet
+    {
+      types::boundary_id                   id;
+      ComponentMask                        mask;
+      std::unique_ptr<FunctionParser<dim>> displacement;
+    };
+    struct Neumann
+    {
+      types::boundary_id                   id;
+      std::unique_ptr<FunctionParser<dim>> traction;
+    };
+
+    /// Sets the time at which all expressions are evaluated.
+    void
+    set_time(const double time);
+
+    /// Throws InputError if a listed boundary id occurs on no boundary face.
+    void
+    check_boundary_ids(const Triangulation<dim> &triangulation) const;
+
+    std::vector<Dirichlet> dirichlet;
+    std::vector<Neumann>   neumann;
+    /// Force per unit reference volume (N/m^3 if SI), added to rho_0 * gravity.
+    std::unique_ptr<FunctionParser<dim>> body_force;
+    /// Acceleration of gravity (m/s^2 if SI); multiplied by rho_0.
+    Tensor<1, dim>                       gravity;
+    std::unique_ptr<FunctionParser<dim>> initial_displacement;
+    std::unique_ptr<FunctionParser<dim>> initial_velocity;
+  };
+} // namespace tissuefem::boundary

@@ -1,0 +1,50 @@
+#pragma once
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/grid/tria.h>
+
+#include <string>
+
+namespace tissuefem::geometry
+{
+  using namespace dealii;
+
+  /**
+   * The 'Geometry' subsection: where the reference configuration comes from
+   * (a deal.II generator or a mesh file), its cell type, refinement and
+   * boundary ids.
+   */
+  struct GeometryParameters
+  {
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
+
+    std::string  source;     ///< "box" or "file"
+    std::string  cell_type;  ///< "hypercube" or "simplex"
+    std::string  lower_corner, upper_corner, subdivisions;
+    std::string  mesh_file;
+    double       scale;
+    unsigned int global_refinements;
+    std::string  boundary_id_predicates;
+  };
+
+  /**
+   * Builds the reference configuration. A generated box has boundary ids
+   * 0/1 on the faces x = lower/upper, 2/3 on y, 4/5 on z. Meshes read from a
+   * file keep the ids the file carries (0 where it carries none). Then each
+   * 'Boundary id predicates' entry "id: expression" assigns its id to every
+   * boundary face whose centre satisfies the muparser expression of x, y, z,
+   * in the order given. Throws InputError on any problem.
+   */
+  template <int dim>
+  void
+  build_triangulation(const GeometryParameters &parameters,
+                      Triangulation<dim>       &triangulation);
+
+  /// Whether the triangulation's cells are simplices (triangles, tets).
+  template <int dim>
+  bool
+  is_simplex_mesh(const Triangulation<dim> &triangulation);
+} // namespace tissuefem::geometry

@@ -1,0 +1,77 @@
+#pragma once
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/grid/tria.h>
+
+#include <tissuefem/materials/interface.h>
+
+#include <map>
+#include <memory>
+#include <vector>
+
+namespace tissuefem::materials
+{
+  /**
+   * The 'Materials' subsection: which model, elastic constants and density
+   * each material id of the mesh gets, and how tangents are computed.
+   * Entries are lists with one value per listed material id, or a single
+   * value that applies to all of them.
+   */
+  struct MaterialParameters
+  {
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
+
+    std::vector<unsigned int>     material_ids;
+    std::vector<std::string>      model_names;
+    std::vector<ElasticConstants> constants;
+    std::vector<double>           densities;
+    TangentMethod                 tangent_method;
+  };
+
+  template <int dim>
+  class MaterialSet
+  {
+  public:
+    MaterialSet(const MaterialParameters &parameters,
+                const ParameterHandler   &prm);
+
+    /// Throws InputError if a cell of @p triangulation has a material id no
+    /// material is given for.
+    void
+    check_covers(const Triangulation<dim> &triangulation) const;
+
+    const Interface<dim> &
+    material(const types::material_id id) const;
+
+    /// Mass density per unit reference volume (kg/m^3 if SI).
+    double
+    density(const types::material_id id) const;
+
+    TangentMethod
+    tangent_method() const
+    {
+      return method;
+    }
+
+    /// Whether every material accepts det F <= 0.
+    bool
+    all_admit_inversion() const;
+
+  private:
+    struct Entry
+    {
+      std::unique_ptr<Interface<dim>> model;
+      double                          density;
+    };
+    /// Either keyed by material id, or a single entry for all cells (key
+    /// numbers::invalid_material_id).
+    std::map<types::material_id, Entry> entries;
+    TangentMethod                       method;
+
+    const Entry &
+    entry(const types::material_id id) const;
+  };
+} // namespace tissuefem::materials

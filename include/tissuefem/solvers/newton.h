@@ -1,0 +1,60 @@
+#pragma once
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/vector.h>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace tissuefem::solvers
+{
+  using namespace dealii;
+
+  /// The 'Newton solver' subsection.
+  struct NewtonParameters
+  {
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
+
+    unsigned int max_iterations;
+    double       absolute_residual_tolerance;
+    double       relative_residual_tolerance;
+    double       update_tolerance;
+    unsigned int max_line_search_steps;
+  };
+
+  struct NewtonResult
+  {
+    bool                converged = false;
+    unsigned int        iterations = 0;
+    /// l2 norms of the residual (force units), one per evaluation at an
+    /// accepted iterate, starting with the initial guess.
+    std::vector<double> residual_norms;
+    std::string         failure;
+    double              assembly_seconds = 0;
+    double              solve_seconds    = 0;
+  };
+
+  /**
+   * Newton's method with a backtracking line search on the residual norm.
+   * @p assemble(u, residual, with_jacobian) evaluates the residual (and the
+   * Jacobian, kept by the caller); it may throw SolverError for a state
+   * the model cannot evaluate (an inverted element), which the line search
+   * treats as a failed trial. @p solve_jacobian(du, rhs) solves J du = rhs.
+   * Converged when |R| <= absolute tolerance, or |R| <= relative tolerance
+   * times the first |R|, or |du| <= update tolerance (1 + |u|), with R
+   * evaluated at the new iterate.
+   */
+  NewtonResult
+  solve_newton(
+    const NewtonParameters &parameters,
+    Vector<double>         &u,
+    const std::function<void(const Vector<double> &, Vector<double> &, bool)>
+      &assemble,
+    const std::function<void(Vector<double> &, const Vector<double> &)>
+      &solve_jacobian);
+} // namespace tissuefem::solvers

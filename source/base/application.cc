@@ -1,0 +1,207 @@
+#include <deal.II/base/multithread_info.h>
+
+#include <tissuefem/base/application.h>
+#include <tissuefem/base/input_error.h>
+#include <tissuefem/base/parameter_tools.h>
+#include <tissuefem/boundary/boundary_conditions.h>
+#include <tissuefem/geometry/geometry.h>
+#include <tissuefem/materials/material_set.h>
+#include <tissuefem/output/output_writer.h>
+#include <tissuefem/problems/interface.h>
+#include <tissuefem/solid/discretization.h>
+#include <tissuefem/solvers/linear_solver.h>
+#include <tissuefem/solvers/newton.h>
+#include <tissuefem/time/interface.h>
+
+#include <filesystem>
+#include <iostream>
+
+#ifndef TISSUEFEM_VERSION
+#  define TISSUEFEM_VERSION "unknown"
+#endif
+
+namespace tissuefem
+{
+  void
+  declare_all_parameters(ParameterHandler &prm)
+  {
+    prm.declare_entry("Dimension",
+                      "2",
+                      Patterns::Integer(1, 3),
+                      "Space dimension of the problem: 1, 2 or 3.");
+    prm.declare_entry(
+      "Problem",
+      "elasticity",
+      Patterns::Selection(
+        problems::ProblemRegistry::instance().selection_pattern()),
+      "What to compute. " +
+        problems::ProblemRegistry::instance().documentation());
+    geometry::GeometryParameters::declare_parameters(prm);
+    solid::FiniteElementParameters::declare_parameters(prm);
+    materials::MaterialParameters::declare_parameters(prm);
+    boundary::BoundaryParameters::declare_parameters(prm);
+    time::TimeParameters::declare_parameters(prm);
+    solvers::NewtonParameters::declare_parameters(prm);
+    solvers::LinearSolverParameters::declare_parameters(prm);
+    output::OutputParameters::declare_parameters(prm);
+    problems::ProblemRegistry::instance().declare_parameters(prm);
+  }
+
+
+  void
+  read_parameters(ParameterHandler               &prm,
+                  const std::string              &file,
+                  const std::vector<std::string> &overrides)
+  {
+    if (!std::filesystem::is_regular_file(file))
+      throw InputError("Parameter file '" + file + "' cannot be opened");
+    try
+      {
+        prm.parse_input(file);
+      }
+    catch (const ExceptionBase &e)
+      {
+        throw InputError("Parameter file '" + file +
+                         "': " + one_line_message(e));
+      }
+
+    for (const std::string &assignment : overrides)
+      {
+        const auto equals = assignment.find('=');
+        if (equals == std::string::npos)
+          throw InputError("--set '" + assignment +
+                           "': expected 'Subsection/Name=value'");
+        const std::vector<std::string> path =
+          split_and_trim(assignment.substr(0, equals), '/');
+        const std::string value = Utilities::trim(assignment.substr(equals + 1));
+        try
+          {
+            for (unsigned int i = 0; i + 1 < path.size(); ++i)
+              prm.enter_subsection(path[i]);
+            prm.set(path.back(), value);
+            for (unsigned int i = 0; i + 1 < path.size(); ++i)
+              prm.leave_subsection();
+          }
+        catch (const ExceptionBase &e)
+          {
+            throw InputError("--set '" + assignment +
+                             "': " + one_line_message(e));
+          }
+      }
+  }
+
+
+  namespace
+  {
+    void
+    print_usage(std::ostream &out)
+    {
+      out << "Usage:\n"
+             "  tissuefem FILE.prm [--set 'Subsection/Name=value' ...]\n"
+             "      run the scene FILE.prm describes; each --set overrides one\n"
+             "      parameter after the file is read.\n"
+             "  tissuefem --validate FILE.prm [--set ...]\n"
+             "      check the file (parameters, mesh, expressions, probes)\n"
+             "      without computing or writing anything.\n"
+             "  tissuefem --print-parameters\n"
+             "      list every parameter with its default and documentation.\n"
+             "  tissuefem --help | --version\n"
+             "Exit status: 0 on success, 2 for bad input, 3 when the solver\n"
+             "fails, 4 for any other error.\n";
+    }
+  } // namespace
+
+
+  int
+  run_command_line(int argc, char **argv)
+  {
+    std::vector<std::string> args(argv + 1, argv + argc);
+    std::vector<std::string> overrides;
+    std::string              file;
+    bool                     validate_only = false;
+    try
+      {
+        for (unsigned int i = 0; i < args.size(); ++i)
+          {
+            const std::string &a = args[i];
+            if (a == "--help" || a == "-h")
+              {
+                print_usage(std::cout);
+                return 0;
+              }
+            if (a == "--version")
+              {
+                std::cout << "tissuefem " << TISSUEFEM_VERSION << std::endl;
+                return 0;
+              }
+            if (a == "--print-parameters")
+              {
+                ParameterHandler prm;
+                declare_all_parameters(prm);
+                prm.print_parameters(std::cout, ParameterHandler::PRM);
+                return 0;
+              }
+            if (a == "--validate")
+              validate_only = true;
+            else if (a == "--set")
+              {
+                if (i + 1 == args.size())
+                  throw InputError("--set needs 'Subsection/Name=value'");
+                overrides.push_back(args[++i]);
+              }
+            else if (a.rfind("--set=", 0) == 0)
+              overrides.push_back(a.substr(6));
+            else if (a.rfind("--", 0) == 0)
+              throw InputError("unknown option '" + a + "' (see --help)");
+            else if (file.empty())
+              file = a;
+            else
+              throw InputError("more than one parameter file given ('" + file +
+                               "', '" + a + "')");
+          }
+        if (file.empty())
+          {
+            print_usage(std::cerr);
+            return 2;
+          }
+
+        ParameterHandler prm;
+        declare_all_parameters(prm);
+        read_parameters(prm, file, overrides);
+        problems::RunContext context;
+        context.parameter_directory =
+          std::filesystem::path(file).parent_path().string();
+        auto problem = problems::ProblemRegistry::instance().create(
+          prm.get("Problem"), prm, context);
+        if (validate_only)
+          {
+            problem->setup();
+            std::cout << "tissuefem: '" << file << "' is valid" << std::endl;
+            return 0;
+          }
+        problem->run();
+        return 0;
+      }
+    catch (const InputError &e)
+      {
+        std::cerr << "tissuefem: error: " << e.what() << std::endl;
+        return 2;
+      }
+    catch (const SolverError &e)
+      {
+        std::cerr << "tissuefem: solver failure: " << e.what() << std::endl;
+        return 3;
+      }
+    catch (const ExceptionBase &e)
+      {
+        std::cerr << "tissuefem: error: " << one_line_message(e) << std::endl;
+        return 4;
+      }
+    catch (const std::exception &e)
+      {
+        std::cerr << "tissuefem: error: " << squeeze_whitespace(e.what())
+                  << std::endl;
+        return 4;
+      }
+  }
+} // namespace tissuefem

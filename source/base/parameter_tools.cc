@@ -1,0 +1,197 @@
+#include <deal.II/lac/vector.h>
+#include <deal.II/base/utilities.h>
+
+#include <tissuefem/base/input_error.h>
+#include <tissuefem/base/parameter_tools.h>
+
+#include <cmath>
+#include <map>
+#include <sstream>
+
+namespace tissuefem
+{
+  std::vector<std::string>
+  split_and_trim(const std::string &text, const char separator)
+  {
+    std::vector<std::string> pieces;
+    std::string              current;
+    for (const char c : text)
+      if (c == separator)
+        {
+          pieces.push_back(Utilities::trim(current));
+          current.clear();
+        }
+      else
+        current += c;
+    pieces.push_back(Utilities::trim(current));
+    return pieces;
+  }
+
+
+  std::vector<std::string>
+  split_entries(const std::string &text)
+  {
+    std::vector<std::string> entries;
+    std::string              current;
+    for (std::size_t i = 0; i < text.size(); ++i)
+      {
+        if (text[i] == '|')
+          {
+            const bool doubled = (i + 1 < text.size() && text[i + 1] == '|');
+            if (doubled)
+              {
+                current += "||";
+                ++i;
+                continue;
+              }
+            entries.push_back(Utilities::trim(current));
+            current.clear();
+          }
+        else
+          current += text[i];
+      }
+    if (!Utilities::trim(current).empty() || !entries.empty())
+      entries.push_back(Utilities::trim(current));
+    return entries;
+  }
+
+
+  std::string
+  expression_variables(const unsigned int dim)
+  {
+    static const char *names[] = {"x", "y", "z"};
+    std::string        result;
+    for (unsigned int d = 0; d < dim; ++d)
+      result += std::string(names[d]) + ",";
+    return result + "t";
+  }
+
+
+  template <int dim>
+  std::unique_ptr<FunctionParser<dim>>
+  make_function(const std::string &expressions,
+                const unsigned int n_components,
+                const std::string &parameter)
+  {
+    std::vector<std::string> pieces = split_and_trim(expressions, ';');
+    if (pieces.size() == 1 && n_components > 1)
+      pieces.resize(n_components, pieces[0]);
+    require(pieces.size() == n_components,
+            parameter,
+            "expected " + std::to_string(n_components) +
+              " expressions separated by ';', got " +
+              std::to_string(pieces.size()) + " in '" + expressions + "'");
+    for (const auto &piece : pieces)
+      require(!piece.empty(),
+              parameter,
+              "empty expression in '" + expressions + "'");
+
+    auto function = std::make_unique<FunctionParser<dim>>(n_components);
+    const std::map<std::string, double> constants = {{"pi", M_PI}};
+    try
+      {
+        function->initialize(expression_variables(dim),
+                             pieces,
+                             constants,
+                             /*time_dependent=*/true);
+        // muparser may parse lazily; evaluating once makes every syntax
+        // error surface here, where we can still name the parameter.
+        Vector<double> values(n_components);
+        function->vector_value(Point<dim>(), values);
+      }
+    catch (const ExceptionBase &e)
+      {
+        throw InputError("Parameter '" + parameter +
+                         "': cannot parse expression '" + expressions +
+                         "': " + one_line_message(e));
+      }
+    return function;
+  }
+
+
+  template <int dim>
+  Point<dim>
+  parse_point(const std::string &text, const std::string &parameter)
+  {
+    const std::vector<std::string> pieces = split_and_trim(text, ',');
+    require(pieces.size() == dim,
+            parameter,
+            "expected a point with " + std::to_string(dim) +
+              " coordinates separated by ',', got '" + text + "'");
+    Point<dim> p;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        std::size_t used = 0;
+        try
+          {
+            p[d] = std::stod(pieces[d], &used);
+          }
+        catch (...)
+          {
+            used = 0;
+          }
+        require(used == pieces[d].size() && used > 0 && std::isfinite(p[d]),
+                parameter,
+                "'" + pieces[d] + "' is not a number (in '" + text + "')");
+      }
+    return p;
+  }
+
+
+  template <int dim>
+  std::vector<Point<dim>>
+  parse_points(const std::string &text, const std::string &parameter)
+  {
+    std::vector<Point<dim>> points;
+    if (Utilities::trim(text).empty())
+      return points;
+    for (const auto &piece : split_and_trim(text, ';'))
+      points.push_back(parse_point<dim>(piece, parameter));
+    return points;
+  }
+
+
+  std::string
+  squeeze_whitespace(const std::string &text)
+  {
+    std::string result;
+    bool        in_space = false;
+    for (const char c : text)
+      {
+        if (std::isspace(static_cast<unsigned char>(c)))
+          in_space = !result.empty();
+        else
+          {
+            if (in_space)
+              result += ' ';
+            result += c;
+            in_space = false;
+          }
+      }
+    return result;
+  }
+
+
+  std::string
+  one_line_message(const ExceptionBase &exception)
+  {
+    std::ostringstream info;
+    exception.print_info(info);
+    std::string message = squeeze_whitespace(info.str());
+    return message.empty() ? squeeze_whitespace(exception.get_exc_name()) :
+                             message;
+  }
+
+
+#define TISSUEFEM_INSTANTIATE(dim)                                           \
+  template std::unique_ptr<FunctionParser<dim>> make_function<dim>(        \
+    const std::string &, const unsigned int, const std::string &);         \
+  template Point<dim> parse_point<dim>(const std::string &,                \
+                                       const std::string &);               \
+  template std::vector<Point<dim>> parse_points<dim>(const std::string &,  \
+                                                     const std::string &);
+  TISSUEFEM_INSTANTIATE(1)
+  TISSUEFEM_INSTANTIATE(2)
+  TISSUEFEM_INSTANTIATE(3)
+#undef TISSUEFEM_INSTANTIATE
+} // namespace tissuefem

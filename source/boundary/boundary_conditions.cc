@@ -1,0 +1,195 @@
+#include <tissuefem/base/input_error.h>
+#include <tissuefem/base/parameter_tools.h>
+#include <tissuefem/boundary/boundary_conditions.h>
+
+#include <set>
+
+namespace tissuefem::boundary
+{
+  void
+  BoundaryParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Boundary conditions");
+    {
+      prm.declare_entry(
+        "Dirichlet",
+        "",
+        Patterns::Anything(),
+        "Prescribed displacement: entries 'id: components: u_x; u_y; u_z' "
+        "separated by '|'. 'components' is a subset of 'xyz' (which "
+        "displacement components are prescribed); the expressions (one per "
+        "dimension, or one for all) are functions of x, y, z, t in length "
+        "units. Example: '0: xy: 0; 0 | 1: y: -0.1*t'.");
+      prm.declare_entry(
+        "Neumann",
+        "",
+        Patterns::Anything(),
+        "Prescribed traction P N per unit reference area (Pa if SI): entries "
+        "'id: h_x; h_y; h_z' separated by '|'. Boundaries listed nowhere are "
+        "traction free.");
+      prm.declare_entry("Body force",
+                        "0",
+                        Patterns::Anything(),
+                        "Force per unit reference volume (N/m^3 if SI), "
+                        "'f_x; f_y; f_z' as functions of x, y, z, t.");
+      prm.declare_entry("Gravity",
+                        "0, 0, 0",
+                        Patterns::Anything(),
+                        "Acceleration of gravity 'g_x, g_y, g_z' (m/s^2 if "
+                        "SI); contributes rho_0 g per unit reference volume. "
+                        "Only the first Dimension components are read.");
+      prm.declare_entry("Initial displacement",
+                        "0",
+                        Patterns::Anything(),
+                        "u at t = 0, 'u_x; u_y; u_z' as functions of x, y, z.");
+      prm.declare_entry("Initial velocity",
+                        "0",
+                        Patterns::Anything(),
+                        "v at t = 0, 'v_x; v_y; v_z' as functions of x, y, z.");
+    }
+    prm.leave_subsection();
+  }
+
+
+  void
+  BoundaryParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Boundary conditions");
+    dirichlet            = prm.get("Dirichlet");
+    neumann              = prm.get("Neumann");
+    body_force           = prm.get("Body force");
+    gravity              = prm.get("Gravity");
+    initial_displacement = prm.get("Initial displacement");
+    initial_velocity     = prm.get("Initial velocity");
+    prm.leave_subsection();
+  }
+
+
+  namespace
+  {
+    types::boundary_id
+    parse_boundary_id(const std::string &text, const std::string &parameter)
+    {
+      int id = -1;
+      try
+        {
+          std::size_t used = 0;
+          id               = std::stoi(text, &used);
+          if (used != text.size())
+            id = -1;
+        }
+      catch (...)
+        {}
+      require(id >= 0 && id < 255,
+              parameter,
+              "'" + text + "' is not a boundary id 0..254");
+      return id;
+    }
+
+    template <int dim>
+    ComponentMask
+    parse_mask(const std::string &text, const std::string &parameter)
+    {
+      const std::string names = std::string("xyz").substr(0, dim);
+      std::vector<bool> mask(dim, false);
+      for (const char c : text)
+        {
+          const auto d = names.find(c);
+          require(d != std::string::npos,
+                  parameter,
+                  "components '" + text + "' must be letters of '" + names +
+                    "'");
+          mask[d] = true;
+        }
+      require(!text.empty(), parameter, "empty component list");
+      return ComponentMask(mask);
+    }
+  } // namespace
+
+
+  template <int dim>
+  BoundaryConditions<dim>::BoundaryConditions(
+    const BoundaryParameters &parameters)
+  {
+    const std::string dirichlet_name = "Boundary conditions/Dirichlet";
+    for (const auto &entry : split_entries(parameters.dirichlet))
+      {
+        const auto parts = split_and_trim(entry, ':');
+        require(parts.size() == 3,
+                dirichlet_name,
+                "entry '" + entry + "' is not 'id: components: expressions'");
+        dirichlet.push_back(
+          {parse_boundary_id(parts[0], dirichlet_name),
+           parse_mask<dim>(parts[1], dirichlet_name),
+           make_function<dim>(parts[2], dim, dirichlet_name)});
+      }
+
+    const std::string neumann_name = "Boundary conditions/Neumann";
+    for (const auto &entry : split_entries(parameters.neumann))
+      {
+        const auto parts = split_and_trim(entry, ':');
+        require(parts.size() == 2,
+                neumann_name,
+                "entry '" + entry + "' is not 'id: expressions'");
+        neumann.push_back({parse_boundary_id(parts[0], neumann_name),
+                           make_function<dim>(parts[1], dim, neumann_name)});
+      }
+
+    body_force = make_function<dim>(parameters.body_force,
+                                    dim,
+                                    "Boundary conditions/Body force");
+    const auto g = split_and_trim(parameters.gravity, ',');
+    require(g.size() >= dim,
+            "Boundary conditions/Gravity",
+            "needs " + std::to_string(dim) + " components");
+    std::string leading;
+    for (unsigned int d = 0; d < dim; ++d)
+      leading += (d ? "," : "") + g[d];
+    gravity = parse_point<dim>(leading, "Boundary conditions/Gravity");
+
+    initial_displacement =
+      make_function<dim>(parameters.initial_displacement,
+                         dim,
+                         "Boundary conditions/Initial displacement");
+    initial_velocity = make_function<dim>(parameters.initial_velocity,
+                                          dim,
+                                          "Boundary conditions/Initial velocity");
+  }
+
+
+  template <int dim>
+  void
+  BoundaryConditions<dim>::set_time(const double time)
+  {
+    for (auto &d : dirichlet)
+      d.displacement->set_time(time);
+    for (auto &n : neumann)
+      n.traction->set_time(time);
+    body_force->set_time(time);
+  }
+
+
+  template <int dim>
+  void
+  BoundaryConditions<dim>::check_boundary_ids(
+    const Triangulation<dim> &triangulation) const
+  {
+    const std::vector<types::boundary_id> present =
+      triangulation.get_boundary_ids();
+    const std::set<types::boundary_id> ids(present.begin(), present.end());
+    for (const auto &d : dirichlet)
+      require(ids.count(d.id) > 0,
+              "Boundary conditions/Dirichlet",
+              "boundary id " + std::to_string(d.id) +
+                " is on no boundary face of the mesh");
+    for (const auto &n : neumann)
+      require(ids.count(n.id) > 0,
+              "Boundary conditions/Neumann",
+              "boundary id " + std::to_string(n.id) +
+                " is on no boundary face of the mesh");
+  }
+
+  template class BoundaryConditions<1>;
+  template class BoundaryConditions<2>;
+  template class BoundaryConditions<3>;
+} // namespace tissuefem::boundary

@@ -1,0 +1,266 @@
+#include <deal.II/base/function_parser.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_in.h>
+#include <deal.II/grid/grid_tools.h>
+
+#include <tissuefem/base/input_error.h>
+#include <tissuefem/base/parameter_tools.h>
+#include <tissuefem/geometry/geometry.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace tissuefem::geometry
+{
+  void
+  GeometryParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Geometry");
+    {
+      prm.declare_entry("Source",
+                        "box",
+                        Patterns::Selection("box|file"),
+                        "'box': an interval, rectangle or box from the corners "
+                        "and subdivisions below; 'file': read 'Mesh file'.");
+      prm.declare_entry("Cell type",
+                        "hypercube",
+                        Patterns::Selection("hypercube|simplex"),
+                        "For 'box': quadrilaterals/hexahedra or "
+                        "triangles/tetrahedra (ignored in 1D and for files, "
+                        "whose cells are what the file holds).");
+      prm.declare_entry("Lower corner",
+                        "0, 0, 0",
+                        Patterns::Anything(),
+                        "For 'box': the lower corner, 'x, y, z' (only the "
+                        "first Dimension coordinates are read), length units.");
+      prm.declare_entry("Upper corner",
+                        "1, 1, 1",
+                        Patterns::Anything(),
+                        "For 'box': the upper corner, as 'Lower corner'.");
+      prm.declare_entry("Subdivisions",
+                        "1, 1, 1",
+                        Patterns::List(Patterns::Integer(1, 10000)),
+                        "For 'box': cells per direction before refinement "
+                        "(only the first Dimension values are read).");
+      prm.declare_entry("Mesh file",
+                        "",
+                        Patterns::Anything(),
+                        "For 'file': a mesh read by deal.II's GridIn, chosen "
+                        "by extension: .msh (Gmsh 1.0 or 2.x ASCII), .vtk, "
+                        ".inp (Abaqus). A relative path is taken relative to "
+                        "the parameter file's directory.");
+      prm.declare_entry("Scale",
+                        "1",
+                        Patterns::Double(0),
+                        "Factor applied to the coordinates of a mesh file, to "
+                        "convert its length unit.");
+      prm.declare_entry("Global refinements",
+                        "0",
+                        Patterns::Integer(0, 12),
+                        "Uniform refinements applied after building.");
+      prm.declare_entry(
+        "Boundary id predicates",
+        "",
+        Patterns::Anything(),
+        "Entries 'id: expression' separated by '|', e.g. '1: y < 0.5 | 2: x "
+        "> 3'. Each boundary face whose centre (x, y, z) makes the muparser "
+        "expression non-zero gets the id; later entries win. Applied after "
+        "refinement.");
+    }
+    prm.leave_subsection();
+  }
+
+
+  void
+  GeometryParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Geometry");
+    source                 = prm.get("Source");
+    cell_type              = prm.get("Cell type");
+    lower_corner           = prm.get("Lower corner");
+    upper_corner           = prm.get("Upper corner");
+    subdivisions           = prm.get("Subdivisions");
+    mesh_file              = prm.get("Mesh file");
+    scale                  = prm.get_double("Scale");
+    global_refinements     = prm.get_integer("Global refinements");
+    boundary_id_predicates = prm.get("Boundary id predicates");
+    prm.leave_subsection();
+    require(scale > 0, "Geometry/Scale", "must be > 0");
+  }
+
+
+  namespace
+  {
+    template <int dim>
+    Point<dim>
+    leading_coordinates(const std::string &text, const std::string &parameter)
+    {
+      std::vector<std::string> pieces = split_and_trim(text, ',');
+      require(pieces.size() >= dim,
+              parameter,
+              "needs at least " + std::to_string(dim) + " coordinates, got '" +
+                text + "'");
+      pieces.resize(dim);
+      std::string joined;
+      for (const auto &p : pieces)
+        joined += (joined.empty() ? "" : ",") + p;
+      return parse_point<dim>(joined, parameter);
+    }
+
+
+    template <int dim>
+    void
+    build_box(const GeometryParameters &parameters,
+              Triangulation<dim>       &triangulation)
+    {
+      const Point<dim> lower = leading_coordinates<dim>(
+        parameters.lower_corner, "Geometry/Lower corner");
+      const Point<dim> upper = leading_coordinates<dim>(
+        parameters.upper_corner, "Geometry/Upper corner");
+      for (unsigned int d = 0; d < dim; ++d)
+        require(upper[d] > lower[d],
+                "Geometry/Upper corner",
+                "must exceed 'Lower corner' in every coordinate");
+
+      const std::vector<std::string> pieces =
+        Utilities::split_string_list(parameters.subdivisions);
+      require(pieces.size() >= dim,
+              "Geometry/Subdivisions",
+              "needs " + std::to_string(dim) + " values");
+      std::vector<unsigned int> repetitions(dim);
+      for (unsigned int d = 0; d < dim; ++d)
+        repetitions[d] = Utilities::string_to_int(pieces[d]);
+
+      if (parameters.cell_type == "simplex" && dim > 1)
+        {
+          // deal.II 9.4 cannot colorize simplex boxes; give the faces the
+          // same ids a colorized hypercube box has.
+          GridGenerator::subdivided_hyper_rectangle_with_simplices(
+            triangulation, repetitions, lower, upper);
+          const double tolerance = 1e-10 * lower.distance(upper);
+          for (const auto &cell : triangulation.active_cell_iterators())
+            for (const auto &face : cell->face_iterators())
+              if (face->at_boundary())
+                for (unsigned int d = 0; d < dim; ++d)
+                  {
+                    if (std::abs(face->center()[d] - lower[d]) < tolerance)
+                      face->set_boundary_id(2 * d);
+                    if (std::abs(face->center()[d] - upper[d]) < tolerance)
+                      face->set_boundary_id(2 * d + 1);
+                  }
+        }
+      else
+        GridGenerator::subdivided_hyper_rectangle(
+          triangulation, repetitions, lower, upper, /*colorize=*/true);
+    }
+
+
+    template <int dim>
+    void
+    read_mesh_file(const GeometryParameters &parameters,
+                   Triangulation<dim>       &triangulation)
+    {
+      const std::string &file = parameters.mesh_file;
+      require(!file.empty(), "Geometry/Mesh file", "is empty");
+      require(std::filesystem::is_regular_file(file),
+              "Geometry/Mesh file",
+              "cannot open '" + file + "'");
+      const std::string extension = std::filesystem::path(file).extension();
+      GridIn<dim>       grid_in(triangulation);
+      std::ifstream     in(file);
+      try
+        {
+          if (extension == ".msh")
+            grid_in.read_msh(in);
+          else if (extension == ".vtk")
+            grid_in.read_vtk(in);
+          else if (extension == ".inp")
+            grid_in.read_abaqus(in);
+          else
+            throw InputError("Parameter 'Geometry/Mesh file': unknown "
+                             "extension '" + extension + "' of '" + file +
+                             "' (use .msh, .vtk or .inp)");
+        }
+      catch (const ExceptionBase &e)
+        {
+          throw InputError("Mesh file '" + file +
+                           "' could not be read: " + one_line_message(e));
+        }
+      require(triangulation.n_active_cells() > 0,
+              "Geometry/Mesh file",
+              "'" + file + "' holds no cells of dimension " +
+                std::to_string(dim));
+      if (parameters.scale != 1.)
+        GridTools::scale(parameters.scale, triangulation);
+    }
+
+
+    template <int dim>
+    void
+    apply_boundary_predicates(const std::string  &text,
+                              Triangulation<dim> &triangulation)
+    {
+      const std::string parameter = "Geometry/Boundary id predicates";
+      for (const auto &entry : split_entries(text))
+        {
+          const auto colon = entry.find(':');
+          require(colon != std::string::npos,
+                  parameter,
+                  "entry '" + entry + "' is not of the form 'id: expression'");
+          int id = -1;
+          try
+            {
+              id = std::stoi(entry.substr(0, colon));
+            }
+          catch (...)
+            {}
+          require(id >= 0 && id < 255,
+                  parameter,
+                  "'" + entry.substr(0, colon) + "' is not a boundary id "
+                  "0..254");
+          const auto predicate =
+            make_function<dim>(entry.substr(colon + 1), 1, parameter);
+          for (const auto &cell : triangulation.active_cell_iterators())
+            for (const auto &face : cell->face_iterators())
+              if (face->at_boundary() && predicate->value(face->center()) != 0)
+                face->set_boundary_id(id);
+        }
+    }
+  } // namespace
+
+
+  template <int dim>
+  void
+  build_triangulation(const GeometryParameters &parameters,
+                      Triangulation<dim>       &triangulation)
+  {
+    if (parameters.source == "file")
+      read_mesh_file(parameters, triangulation);
+    else
+      build_box(parameters, triangulation);
+    triangulation.refine_global(parameters.global_refinements);
+    apply_boundary_predicates(parameters.boundary_id_predicates,
+                              triangulation);
+  }
+
+
+  template <int dim>
+  bool
+  is_simplex_mesh(const Triangulation<dim> &triangulation)
+  {
+    return dim > 1 && !triangulation.all_reference_cells_are_hyper_cube();
+  }
+
+  template void
+  build_triangulation<1>(const GeometryParameters &, Triangulation<1> &);
+  template void
+  build_triangulation<2>(const GeometryParameters &, Triangulation<2> &);
+  template void
+  build_triangulation<3>(const GeometryParameters &, Triangulation<3> &);
+  template bool
+  is_simplex_mesh<1>(const Triangulation<1> &);
+  template bool
+  is_simplex_mesh<2>(const Triangulation<2> &);
+  template bool
+  is_simplex_mesh<3>(const Triangulation<3> &);
+} // namespace tissuefem::geometry

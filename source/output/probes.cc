@@ -1,0 +1,63 @@
+#include <deal.II/grid/grid_tools.h>
+
+#include <tissuefem/base/input_error.h>
+#include <tissuefem/output/probes.h>
+
+#include <sstream>
+
+namespace tissuefem::output
+{
+  template <int dim>
+  Probes<dim>::Probes(const std::vector<Point<dim>> &points,
+                      const Mapping<dim>            &mapping,
+                      const DoFHandler<dim>         &dof_handler,
+                      const std::string             &parameter)
+    : locations(points)
+    , dof_handler(dof_handler)
+  {
+    for (const auto &p : points)
+      {
+        std::ostringstream where;
+        where << "(" << p << ")";
+        try
+          {
+            const auto found =
+              GridTools::find_active_cell_around_point(mapping, dof_handler, p);
+            require(found.first.state() == IteratorState::valid,
+                    parameter,
+                    "point " + where.str() + " lies outside the mesh");
+            cells.push_back(found.first);
+            reference_points.push_back(found.second);
+          }
+        catch (const ExceptionBase &)
+          {
+            throw InputError("Parameter '" + parameter + "': point " +
+                             where.str() + " lies outside the mesh");
+          }
+      }
+  }
+
+
+  template <int dim>
+  std::vector<Vector<double>>
+  Probes<dim>::evaluate(const Vector<double> &u) const
+  {
+    const auto &fe = dof_handler.get_fe();
+    std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+    std::vector<Vector<double>>          values;
+    for (unsigned int p = 0; p < cells.size(); ++p)
+      {
+        Vector<double> value(fe.n_components());
+        cells[p]->get_dof_indices(dofs);
+        for (unsigned int i = 0; i < dofs.size(); ++i)
+          value[fe.system_to_component_index(i).first] +=
+            u[dofs[i]] * fe.shape_value(i, reference_points[p]);
+        values.push_back(value);
+      }
+    return values;
+  }
+
+  template class Probes<1>;
+  template class Probes<2>;
+  template class Probes<3>;
+} // namespace tissuefem::output

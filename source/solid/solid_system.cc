@@ -1,0 +1,332 @@
+#include <deal.II/base/function.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include <tissuefem/solid/solid_system.h>
+
+#include <cmath>
+#include <sstream>
+
+namespace tissuefem::solid
+{
+  template <int dim>
+  SolidSystem<dim>::SolidSystem(
+    const Discretization<dim>         &discretization,
+    const materials::MaterialSet<dim> &materials,
+    boundary::BoundaryConditions<dim> &boundary_conditions)
+    : discretization(discretization)
+    , materials(materials)
+    , boundary_conditions(boundary_conditions)
+  {
+    const auto &dof_handler = discretization.dof_handler;
+    for (const auto &d : boundary_conditions.dirichlet)
+      VectorTools::interpolate_boundary_values(*discretization.mapping,
+                                               dof_handler,
+                                               d.id,
+                                               Functions::ZeroFunction<dim>(dim),
+                                               constraints,
+                                               d.mask);
+    constraints.close();
+
+    DynamicSparsityPattern dsp(dof_handler.n_dofs());
+    DoFTools::make_sparsity_pattern(dof_handler, dsp, constraints, false);
+    sparsity.copy_from(dsp);
+    tangent_matrix.reinit(sparsity);
+
+    // Skip evaluating the body force expression at every quadrature point
+    // when it is identically zero at t = 0 and at a few sample points.
+    Vector<double> value(dim);
+    body_force_present = false;
+    for (const double t : {0., 0.37, 1.})
+      {
+        boundary_conditions.body_force->set_time(t);
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          {
+            boundary_conditions.body_force->vector_value(cell->center(), value);
+            body_force_present |= value.l2_norm() != 0.;
+            break;
+          }
+      }
+    body_force_present |= boundary_conditions.body_force->n_components != dim;
+  }
+
+
+  template <int dim>
+  void
+  SolidSystem<dim>::check_not_inverted(
+    const double                     J,
+    const Point<dim>                &where,
+    const materials::Interface<dim> &material) const
+  {
+    if (J > 0 || material.admits_inversion())
+      return;
+    std::ostringstream message;
+    message << "element inverted (det F = " << J << ") at reference point ("
+            << where << "); the material model is undefined for det F <= 0 "
+            << "(use 'robust neo-Hookean' for scenes that invert elements)";
+    throw InvertedElementError(message.str());
+  }
+
+
+  template <int dim>
+  void
+  SolidSystem<dim>::assemble(const Vector<double> &u,
+                             const Vector<double> &u_tilde,
+                             const double          mass_coefficient,
+                             const double          time,
+                             Vector<double>       &residual,
+                             const bool            with_tangent)
+  {
+    const auto        &fe = *discretization.fe;
+    const unsigned int n  = fe.n_dofs_per_cell();
+    FEValues<dim>      fe_values(*discretization.mapping,
+                            fe,
+                            discretization.cell_quadrature,
+                            update_values | update_gradients |
+                              update_JxW_values |
+                              (body_force_present ? update_quadrature_points :
+                                                    update_default));
+    FEFaceValues<dim>  fe_face_values(*discretization.mapping,
+                                     fe,
+                                     discretization.face_quadrature,
+                                     update_values | update_quadrature_points |
+                                       update_JxW_values);
+
+    boundary_conditions.set_time(time);
+    residual.reinit(n_dofs());
+    if (with_tangent)
+      tangent_matrix = 0;
+
+    FullMatrix<double>                   cell_matrix(n, n);
+    Vector<double>                       cell_rhs(n);
+    std::vector<types::global_dof_index> dofs(n);
+    std::vector<double>                  u_cell(n), inertia_cell(n);
+    std::vector<unsigned int>            component(n);
+    for (unsigned int i = 0; i < n; ++i)
+      component[i] = fe.system_to_component_index(i).first;
+    std::vector<Tensor<1, dim>> grads(n);
+    std::vector<double>         values(n);
+    Vector<double>              body_force(dim), traction(dim);
+    Tensor<2, dim>              P;
+    Tensor<4, dim>              A;
+    const auto                  method = materials.tangent_method();
+
+    for (const auto &cell : discretization.dof_handler.active_cell_iterators())
+      {
+        fe_values.reinit(cell);
+        cell->get_dof_indices(dofs);
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            u_cell[i]       = u[dofs[i]];
+            inertia_cell[i] = u[dofs[i]] - u_tilde[dofs[i]];
+          }
+        const auto  &material = materials.material(cell->material_id());
+        const double rho      = materials.density(cell->material_id());
+        cell_matrix           = 0;
+        cell_rhs              = 0;
+
+        for (const unsigned int q : fe_values.quadrature_point_indices())
+          {
+            const double   JxW = fe_values.JxW(q);
+            Tensor<2, dim> F   = unit_symmetric_tensor<dim>();
+            Tensor<1, dim> inertia;
+            for (unsigned int i = 0; i < n; ++i)
+              {
+                grads[i]  = fe_values.shape_grad(i, q);
+                values[i] = fe_values.shape_value(i, q);
+                F[component[i]] += u_cell[i] * grads[i];
+                inertia[component[i]] += inertia_cell[i] * values[i];
+              }
+            check_not_inverted(determinant(F), cell->center(), material);
+            if (with_tangent)
+              material.stress_and_tangent(F, P, A, method);
+            else
+              P = material.stress(F);
+
+            Tensor<1, dim> load = rho * boundary_conditions.gravity;
+            if (body_force_present)
+              {
+                boundary_conditions.body_force->vector_value(
+                  fe_values.quadrature_point(q), body_force);
+                for (unsigned int d = 0; d < dim; ++d)
+                  load[d] += body_force[d];
+              }
+            // The inertial term c rho (u - u_tilde) acts like a load.
+            load -= mass_coefficient * rho * inertia;
+
+            for (unsigned int i = 0; i < n; ++i)
+              {
+                const unsigned int ci = component[i];
+                cell_rhs[i] += (P[ci] * grads[i] - load[ci] * values[i]) * JxW;
+                if (!with_tangent)
+                  continue;
+                // B_lm = A_{ci k l m} dN_i/dX_k, so that
+                // K_ij = B_{cj m} dN_j/dX_m (problem session eq 19).
+                Tensor<2, dim> B;
+                for (unsigned int k = 0; k < dim; ++k)
+                  B += grads[i][k] * A[ci][k];
+                const double mass_i = mass_coefficient * rho * values[i];
+                for (unsigned int j = i; j < n; ++j)
+                  {
+                    double value = B[component[j]] * grads[j];
+                    if (component[j] == ci)
+                      value += mass_i * values[j];
+                    cell_matrix(i, j) += value * JxW;
+                  }
+              }
+          }
+
+        for (const auto &face : cell->face_iterators())
+          if (face->at_boundary())
+            for (const auto &neumann : boundary_conditions.neumann)
+              if (face->boundary_id() == neumann.id)
+                {
+                  fe_face_values.reinit(cell, face);
+                  for (const unsigned int q :
+                       fe_face_values.quadrature_point_indices())
+                    {
+                      neumann.traction->vector_value(
+                        fe_face_values.quadrature_point(q), traction);
+                      for (unsigned int i = 0; i < n; ++i)
+                        cell_rhs[i] -= traction[component[i]] *
+                                       fe_face_values.shape_value(i, q) *
+                                       fe_face_values.JxW(q);
+                    }
+                }
+
+        if (with_tangent)
+          {
+            for (unsigned int i = 0; i < n; ++i)
+              for (unsigned int j = 0; j < i; ++j)
+                cell_matrix(i, j) = cell_matrix(j, i);
+            constraints.distribute_local_to_global(
+              cell_matrix, cell_rhs, dofs, tangent_matrix, residual);
+          }
+        else
+          constraints.distribute_local_to_global(cell_rhs, dofs, residual);
+      }
+  }
+
+
+  template <int dim>
+  void
+  SolidSystem<dim>::apply_dirichlet_values(const double time, Vector<double> &u)
+  {
+    std::map<types::global_dof_index, double> values;
+    for (auto &d : boundary_conditions.dirichlet)
+      {
+        d.displacement->set_time(time);
+        VectorTools::interpolate_boundary_values(*discretization.mapping,
+                                                 discretization.dof_handler,
+                                                 d.id,
+                                                 *d.displacement,
+                                                 values,
+                                                 d.mask);
+      }
+    for (const auto &[dof, value] : values)
+      u[dof] = value;
+  }
+
+
+  template <int dim>
+  void
+  SolidSystem<dim>::initial_state(Vector<double> &u, Vector<double> &v) const
+  {
+    u.reinit(n_dofs());
+    v.reinit(n_dofs());
+    boundary_conditions.initial_displacement->set_time(0);
+    boundary_conditions.initial_velocity->set_time(0);
+    VectorTools::interpolate(*discretization.mapping,
+                             discretization.dof_handler,
+                             *boundary_conditions.initial_displacement,
+                             u);
+    VectorTools::interpolate(*discretization.mapping,
+                             discretization.dof_handler,
+                             *boundary_conditions.initial_velocity,
+                             v);
+  }
+
+
+  namespace
+  {
+    /// Calls @p f(cell, F at q, JxW) for every quadrature point.
+    template <int dim, typename Callback>
+    void
+    for_each_deformation_gradient(const Discretization<dim> &discretization,
+                                  const Vector<double>      &u,
+                                  const Callback            &f)
+    {
+      FEValues<dim> fe_values(*discretization.mapping,
+                              *discretization.fe,
+                              discretization.cell_quadrature,
+                              update_gradients | update_JxW_values);
+      const FEValuesExtractors::Vector displacement(0);
+      std::vector<Tensor<2, dim>> grad_u(
+        discretization.cell_quadrature.size());
+      for (const auto &cell :
+           discretization.dof_handler.active_cell_iterators())
+        {
+          fe_values.reinit(cell);
+          fe_values[displacement].get_function_gradients(u, grad_u);
+          for (const unsigned int q : fe_values.quadrature_point_indices())
+            f(cell,
+              q,
+              unit_symmetric_tensor<dim>() + grad_u[q],
+              fe_values.JxW(q));
+        }
+    }
+  } // namespace
+
+
+  template <int dim>
+  void
+  SolidSystem<dim>::cell_fields(const Vector<double> &u,
+                                Vector<float>        &jacobian,
+                                Vector<float>        &von_mises) const
+  {
+    const auto  &triangulation = discretization.dof_handler.get_triangulation();
+    const double n_q           = discretization.cell_quadrature.size();
+    jacobian.reinit(triangulation.n_active_cells());
+    von_mises.reinit(triangulation.n_active_cells());
+    for_each_deformation_gradient(
+      discretization,
+      u,
+      [&](const auto &cell, unsigned int, const Tensor<2, dim> &F, double) {
+        const double J = determinant(F);
+        jacobian[cell->active_cell_index()] += J / n_q;
+        if (J <= 0 && !materials.material(cell->material_id()).admits_inversion())
+          return;
+        const Tensor<2, dim> P =
+          materials.material(cell->material_id()).stress(F);
+        const Tensor<2, dim> sigma = (J != 0 ? 1. / J : 0.) * P * transpose(F);
+        const double         mean  = trace(sigma) / dim;
+        Tensor<2, dim>       deviator = sigma;
+        for (unsigned int d = 0; d < dim; ++d)
+          deviator[d][d] -= mean;
+        von_mises[cell->active_cell_index()] +=
+          std::sqrt(1.5 * scalar_product(deviator, deviator)) / n_q;
+      });
+  }
+
+
+  template <int dim>
+  double
+  SolidSystem<dim>::elastic_energy(const Vector<double> &u) const
+  {
+    double energy = 0;
+    for_each_deformation_gradient(
+      discretization,
+      u,
+      [&](const auto &cell, unsigned int, const Tensor<2, dim> &F, double JxW) {
+        energy +=
+          materials.material(cell->material_id()).energy_density(F) * JxW;
+      });
+    return energy;
+  }
+
+  template class SolidSystem<1>;
+  template class SolidSystem<2>;
+  template class SolidSystem<3>;
+} // namespace tissuefem::solid

@@ -1,0 +1,27 @@
+# Runs tissuefem on a bad input in an empty directory and checks that it
+# fails cleanly: non-zero exit, one line on stderr naming the culprit, and
+# no files written.
+file(REMOVE_RECURSE ${WORKDIR})
+file(MAKE_DIRECTORY ${WORKDIR})
+execute_process(COMMAND ${TISSUEFEM} ${INPUT}
+  WORKING_DIRECTORY ${WORKDIR}
+  RESULT_VARIABLE status
+  OUTPUT_VARIABLE out
+  ERROR_VARIABLE err)
+if(status EQUAL 0)
+  message(FATAL_ERROR "tissuefem accepted a bad input (exit 0)")
+endif()
+string(STRIP "${err}" err)
+string(FIND "${err}" "\n" newline)
+if(NOT newline EQUAL -1)
+  message(FATAL_ERROR "error message is not one line:\n${err}")
+endif()
+string(FIND "${err}" "${EXPECTED}" found)
+if(found EQUAL -1)
+  message(FATAL_ERROR "error message '${err}' does not name '${EXPECTED}'")
+endif()
+file(GLOB written ${WORKDIR}/*)
+if(written)
+  message(FATAL_ERROR "files were written despite the error: ${written}")
+endif()
+message(STATUS "rejected with: ${err}")
