@@ -11,7 +11,8 @@ namespace tissuefem::materials
   std::string
   tangent_method_pattern()
   {
-    return "automatic differentiation|deal.II AD helper|hand coded";
+    return "automatic differentiation|automatic differentiation in F|deal.II "
+           "AD helper|hand coded";
   }
 
 
@@ -20,6 +21,8 @@ namespace tissuefem::materials
   {
     if (name == "automatic differentiation")
       return TangentMethod::automatic_differentiation;
+    if (name == "automatic differentiation in F")
+      return TangentMethod::automatic_differentiation_in_F;
     if (name == "deal.II AD helper")
       return TangentMethod::dealii_ad_helper;
     require(name == "hand coded",
@@ -89,10 +92,13 @@ namespace tissuefem::materials
         "automatic differentiation",
         Patterns::Selection(tangent_method_pattern()),
         "How stress and tangent dP/dF are obtained from the energy: "
-        "'automatic differentiation' (fixed-size Sacado at each quadrature "
-        "point), 'deal.II AD helper' (deal.II's ScalarFunction, dynamic "
-        "Sacado, slower) or 'hand coded' (closed form; neo-Hookean models "
-        "only).");
+        "'automatic differentiation' (fixed-size Sacado numbers; of Psi(I1, "
+        "J) chained with closed-form invariant derivatives for models written "
+        "in invariants, else of Psi(F)), 'automatic differentiation in F' "
+        "(fixed-size Sacado in the entries of F for every model), 'deal.II AD "
+        "helper' (deal.II's Differentiation::AD::ScalarFunction with dynamic "
+        "Sacado numbers, slowest) or 'hand coded' (closed form; neo-Hookean "
+        "models only).");
       MaterialRegistry<3>::instance().declare_parameters(prm);
     }
     prm.leave_subsection();

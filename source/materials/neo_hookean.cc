@@ -1,71 +1,8 @@
+#include <tissuefem/materials/kinematics.h>
 #include <tissuefem/materials/neo_hookean.h>
 
 namespace tissuefem::materials
 {
-  namespace
-  {
-    /// The Levi-Civita symbol in three dimensions.
-    int
-    levi_civita(const unsigned int i, const unsigned int j, const unsigned int k)
-    {
-      return static_cast<int>((j + 3 - i) % 3 == 1 ? 1 : -1) *
-             ((i != j && j != k && i != k) ? 1 : 0);
-    }
-
-    /// The cofactor matrix cof F = J F^{-T}, defined for singular F too.
-    template <int dim>
-    Tensor<2, dim>
-    cofactor(const Tensor<2, dim> &F)
-    {
-      Tensor<2, dim> C;
-      if constexpr (dim == 1)
-        C[0][0] = 1.;
-      else if constexpr (dim == 2)
-        {
-          C[0][0] = F[1][1];
-          C[0][1] = -F[1][0];
-          C[1][0] = -F[0][1];
-          C[1][1] = F[0][0];
-        }
-      else
-        for (unsigned int i = 0; i < 3; ++i)
-          for (unsigned int j = 0; j < 3; ++j)
-            {
-              const unsigned int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
-              const unsigned int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
-              C[i][j] = F[i1][j1] * F[i2][j2] - F[i1][j2] * F[i2][j1];
-            }
-      return C;
-    }
-
-    /// d(cof F)_ij / dF_kl: zero in 1D, eps_ik eps_jl in 2D and
-    /// eps_ikn eps_jlq F_nq in 3D.
-    template <int dim>
-    double
-    cofactor_derivative(const Tensor<2, dim> &F,
-                        const unsigned int    i,
-                        const unsigned int    j,
-                        const unsigned int    k,
-                        const unsigned int    l)
-    {
-      if constexpr (dim == 1)
-        return 0.;
-      else if constexpr (dim == 2)
-        {
-          const auto eps = [](unsigned int a, unsigned int b) {
-            return a == b ? 0. : (a < b ? 1. : -1.);
-          };
-          return eps(i, k) * eps(j, l);
-        }
-      else
-        {
-          if (i == k || j == l)
-            return 0.;
-          const unsigned int n = 3 - i - k, q = 3 - j - l;
-          return levi_civita(i, k, n) * levi_civita(j, l, q) * F[n][q];
-        }
-    }
-  } // namespace
 
 
   template <int dim, typename Volume>
@@ -93,13 +30,11 @@ namespace tissuefem::materials
     const double         c2  = (lambda * g - mu) * dg;
 
     P = mu * F + c2 * cof;
+    A = c1 * outer_product(cof, cof);
     for (unsigned int i = 0; i < dim; ++i)
       for (unsigned int j = 0; j < dim; ++j)
-        for (unsigned int k = 0; k < dim; ++k)
-          for (unsigned int l = 0; l < dim; ++l)
-            A[i][j][k][l] = (i == k && j == l ? mu : 0.) +
-                            c1 * cof[i][j] * cof[k][l] +
-                            c2 * cofactor_derivative(F, i, j, k, l);
+        A[i][j][i][j] += mu;
+    add_cofactor_derivative(F, c2, A);
   }
 
   template class NeoHookeanFamily<1, LogVolume>;

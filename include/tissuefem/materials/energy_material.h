@@ -4,23 +4,50 @@
 
 #include <tissuefem/base/input_error.h>
 #include <tissuefem/materials/interface.h>
+#include <tissuefem/materials/kinematics.h>
 #include <tissuefem/materials/small_matrix.h>
 
 #include <Sacado.hpp>
 
+#include <type_traits>
+
 namespace tissuefem::materials
 {
+  /// Whether @p Model writes its energy as a function of (I1, J).
+  template <typename Model, typename = void>
+  struct HasInvariantEnergy : std::false_type
+  {};
+  template <typename Model>
+  struct HasInvariantEnergy<
+    Model,
+    std::void_t<decltype(std::declval<const Model &>().invariant_energy(0., 0.))>>
+    : std::true_type
+  {};
+
   /**
    * Turns an energy density into a material: @p Model writes
    *
    *   template <typename Number>
    *   Number energy(const SmallMatrix<dim, Number> &F) const;
    *
-   * once, and this class differentiates it. The default path seeds the d*d
-   * entries of F as fixed-size forward AD numbers nested twice, so one energy
-   * evaluation yields Psi, P and dP/dF exactly, with all storage on the stack.
-   * The alternative path uses deal.II's ScalarFunction helper (dynamic
-   * Sacado numbers), which is slower but is what deal.II documents.
+   * once, and this class differentiates it. An isotropic model may in
+   * addition write its energy in the invariants I1 = tr F^T F and J = det F,
+   *
+   *   template <typename Number>
+   *   Number invariant_energy(const Number &I1, const Number &J) const;
+   *
+   * (its energy(F) then just evaluates the invariants).
+   *
+   * Tangent methods:
+   * - automatic differentiation: for invariant models, the five first and
+   *   second derivatives of Psi(I1, J) come from two-variable nested Sacado
+   *   numbers and are chained with the closed-form derivatives of I1 and J
+   *   (dI1/dF = 2F, dJ/dF = cof F); otherwise as below.
+   * - automatic differentiation in F: the d*d entries of F are seeded as
+   *   fixed-size forward AD numbers nested twice, so one energy evaluation
+   *   yields Psi, P and dP/dF, with all storage on the stack.
+   * - deal.II AD helper: deal.II's ScalarFunction helper (dynamic Sacado
+   *   numbers), the approach of deal.II's step-71; slowest.
    */
   template <int dim, typename Model>
   class EnergyMaterial : public Interface<dim>
@@ -64,6 +91,12 @@ namespace tissuefem::materials
       switch (method)
         {
           case TangentMethod::automatic_differentiation:
+            if constexpr (HasInvariantEnergy<Model>::value)
+              invariant_ad(F, P, A);
+            else
+              fixed_size_ad(F, P, A);
+            return;
+          case TangentMethod::automatic_differentiation_in_F:
             fixed_size_ad(F, P, A);
             return;
           case TangentMethod::dealii_ad_helper:
@@ -92,6 +125,45 @@ namespace tissuefem::materials
     model() const
     {
       return static_cast<const Model &>(*this);
+    }
+
+    /**
+     * P = 2 Psi_1 F + Psi_J cof F and
+     * A = 4 Psi_11 F x F + 2 Psi_1J (F x cof + cof x F) + Psi_JJ cof x cof
+     *     + 2 Psi_1 I + Psi_J dcof/dF,
+     * with the Psi derivatives from AD of invariant_energy().
+     */
+    void
+    invariant_ad(const Tensor<2, dim> &F,
+                 Tensor<2, dim>       &P,
+                 Tensor<4, dim>       &A) const
+    {
+      using Inner = Sacado::Fad::SFad<double, 2>;
+      using Outer = Sacado::Fad::SFad<Inner, 2>;
+      const Outer I1(2, 0, Inner(2, 0, F.norm_square()));
+      const Outer J(2, 1, Inner(2, 1, determinant(F)));
+      const Outer psi      = model().invariant_energy(I1, J);
+      const double psi_1   = psi.dx(0).val();
+      const double psi_J   = psi.dx(1).val();
+      const double psi_11  = psi.dx(0).dx(0);
+      const double psi_1J  = psi.dx(0).dx(1);
+      const double psi_JJ  = psi.dx(1).dx(1);
+      const Tensor<2, dim> cof = cofactor(F);
+
+      P = (2. * psi_1) * F + psi_J * cof;
+      // One fused pass: A_ijkl = x_ij F_kl + y_ij cof_kl + 2 Psi_1 d_ik d_jl
+      // with x = 4 Psi_11 F + 2 Psi_1J cof and y = 2 Psi_1J F + Psi_JJ cof.
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = 0; j < dim; ++j)
+          {
+            const double x = 4. * psi_11 * F[i][j] + 2. * psi_1J * cof[i][j];
+            const double y = 2. * psi_1J * F[i][j] + psi_JJ * cof[i][j];
+            for (unsigned int k = 0; k < dim; ++k)
+              for (unsigned int l = 0; l < dim; ++l)
+                A[i][j][k][l] = x * F[k][l] + y * cof[k][l];
+            A[i][j][i][j] += 2. * psi_1;
+          }
+      add_cofactor_derivative(F, psi_J, A);
     }
 
     void

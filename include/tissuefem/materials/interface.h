@@ -15,9 +15,12 @@ namespace tissuefem::materials
   /// How the tangent dP/dF (and the stress with it) is computed.
   enum class TangentMethod
   {
-    /// Fixed-size nested Sacado numbers (SFad<SFad<double,d*d>,d*d>) at the
-    /// quadrature point: exact derivatives of the energy, no heap use.
+    /// Exact derivatives of the energy by fixed-size Sacado numbers: of
+    /// Psi(I1, J) for models written in invariants, else of Psi(F).
     automatic_differentiation,
+    /// Nested fixed-size Sacado numbers SFad<SFad<double,d*d>,d*d> seeded
+    /// with the entries of F, for every model.
+    automatic_differentiation_in_F,
     /// deal.II's Differentiation::AD::ScalarFunction with dynamic Sacado
     /// numbers, the approach of deal.II's step-71. Kept for comparison.
     dealii_ad_helper,
@@ -25,7 +28,7 @@ namespace tissuefem::materials
     hand_coded
   };
 
-  /// "automatic differentiation|deal.II AD helper|hand coded".
+  /// The names of the tangent methods, separated by '|'.
   std::string
   tangent_method_pattern();
 

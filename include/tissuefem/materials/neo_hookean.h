@@ -79,13 +79,21 @@ namespace tissuefem::materials
     declare_parameters(ParameterHandler &)
     {}
 
+    /// Psi in the invariants I1 = tr F^T F and J = det F.
+    template <typename Number>
+    Number
+    invariant_energy(const Number &I1, const Number &J) const
+    {
+      const Number g = Volume::value(J);
+      return 0.5 * mu * (I1 - double(dim)) - mu * g + 0.5 * lambda * g * g;
+    }
+
     template <typename Number>
     Number
     energy(const SmallMatrix<dim, Number> &F) const
     {
-      const Number g = Volume::value(determinant<dim, Number>(F));
-      return 0.5 * mu * (first_invariant<dim, Number>(F) - double(dim)) -
-             mu * g + 0.5 * lambda * g * g;
+      return invariant_energy(first_invariant<dim, Number>(F),
+                              determinant<dim, Number>(F));
     }
 
     bool

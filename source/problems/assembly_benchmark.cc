@@ -1,0 +1,217 @@
+#include <deal.II/base/function_lib.h>
+#include <deal.II/base/utilities.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include <tissuefem/base/parameter_tools.h>
+#include <tissuefem/boundary/boundary_conditions.h>
+#include <tissuefem/geometry/geometry.h>
+#include <tissuefem/materials/material_set.h>
+#include <tissuefem/problems/interface.h>
+#include <tissuefem/solid/discretization.h>
+#include <tissuefem/solid/solid_system.h>
+
+#include <chrono>
+#include <iomanip>
+#include <iostream>
+
+namespace tissuefem::problems
+{
+  /**
+   * Times the assembly of the Jacobian and residual of the same deformed
+   * state with each tangent method, on a hexahedral (Q1) and a tetrahedral
+   * (P1) box, and prints microseconds per cell, the ratio to the hand-coded
+   * tangent, and how far each method's matrix is from the hand-coded one.
+   * All timings come from one run, so their ratios are meaningful on a
+   * noisy machine; each figure is the fastest of 'Repetitions' runs.
+   */
+  template <int dim>
+  class AssemblyBenchmark : public Interface
+  {
+  public:
+    AssemblyBenchmark(ParameterHandler &prm, const RunContext &);
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    void
+    setup() override
+    {}
+
+    void
+    run() override;
+
+  private:
+    ParameterHandler                &prm;
+    materials::MaterialParameters    material_parameters;
+    boundary::BoundaryParameters     boundary_parameters;
+    solid::FiniteElementParameters   fe_parameters;
+    std::string                      hexahedra, tetrahedra;
+    unsigned int                     repetitions;
+
+    void
+    benchmark_mesh(const std::string &cell_type,
+                   const std::string &subdivisions) const;
+  };
+
+
+  template <int dim>
+  void
+  AssemblyBenchmark<dim>::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Assembly benchmark");
+    prm.declare_entry("Hexahedra subdivisions",
+                      "22, 22, 21",
+                      Patterns::List(Patterns::Integer(1, 1000)),
+                      "Cells per direction of the unit box meshed with "
+                      "quadrilaterals/hexahedra; empty to skip.");
+    prm.declare_entry("Simplex subdivisions",
+                      "13, 13, 12",
+                      Patterns::List(Patterns::Integer(1, 1000)),
+                      "Boxes per direction of the unit box whose boxes are "
+                      "split into triangles/tetrahedra; empty to skip.");
+    prm.declare_entry("Repetitions",
+                      "3",
+                      Patterns::Integer(1, 100),
+                      "Assemblies per method; the fastest is reported.");
+    prm.leave_subsection();
+  }
+
+
+  template <int dim>
+  AssemblyBenchmark<dim>::AssemblyBenchmark(ParameterHandler &prm,
+                                            const RunContext &)
+    : prm(prm)
+  {
+    material_parameters.parse_parameters(prm);
+    boundary_parameters.parse_parameters(prm);
+    fe_parameters.parse_parameters(prm);
+    prm.enter_subsection("Assembly benchmark");
+    hexahedra   = prm.get("Hexahedra subdivisions");
+    tetrahedra  = prm.get("Simplex subdivisions");
+    repetitions = prm.get_integer("Repetitions");
+    prm.leave_subsection();
+  }
+
+
+  template <int dim>
+  void
+  AssemblyBenchmark<dim>::benchmark_mesh(const std::string &cell_type,
+                                         const std::string &subdivisions) const
+  {
+    geometry::GeometryParameters geometry;
+    geometry.source             = "box";
+    geometry.cell_type          = cell_type;
+    geometry.lower_corner       = "0, 0, 0";
+    geometry.upper_corner       = "1, 1, 1";
+    geometry.subdivisions       = subdivisions;
+    geometry.scale              = 1;
+    geometry.global_refinements = 0;
+    Triangulation<dim> triangulation;
+    geometry::build_triangulation(geometry, triangulation);
+
+    solid::Discretization<dim>        discretization(triangulation,
+                                              fe_parameters,
+                                              dim);
+    boundary::BoundaryConditions<dim> boundary_conditions(boundary_parameters);
+
+    // A smooth, finite deformation: stretches, shears and a twist.
+    Vector<double> u(discretization.dof_handler.n_dofs());
+    {
+      auto deformation = make_function<dim>(
+        "0.2*x*y + 0.1*sin(3*z); 0.1*x - 0.15*y*z; 0.05*x*x - 0.1*z",
+        dim,
+        "benchmark deformation");
+      VectorTools::interpolate(*discretization.mapping,
+                               discretization.dof_handler,
+                               *deformation,
+                               u);
+    }
+    const Vector<double> u_tilde(u.size());
+
+    std::cout << "\n"
+              << (cell_type == "simplex" ? "P1 simplices" : "Q1 hypercubes")
+              << ": " << triangulation.n_active_cells() << " cells, "
+              << u.size() << " unknowns, model '"
+              << material_parameters.model_names[0] << "'\n"
+              << std::setw(32) << "tangent" << std::setw(14) << "us per cell"
+              << std::setw(16) << "ratio to hand" << std::setw(34)
+              << "max|K - K_hand| / max|K_hand|" << "\n";
+
+    std::vector<std::pair<std::string, materials::TangentMethod>> methods = {
+      {"hand coded", materials::TangentMethod::hand_coded},
+      {"automatic differentiation",
+       materials::TangentMethod::automatic_differentiation},
+      {"automatic differentiation in F",
+       materials::TangentMethod::automatic_differentiation_in_F},
+      {"deal.II AD helper", materials::TangentMethod::dealii_ad_helper}};
+
+    double               hand_time = 0;
+    SparseMatrix<double> reference;
+    SparsityPattern      reference_sparsity;
+    for (const auto &[name, method] : methods)
+      {
+        materials::MaterialParameters parameters = material_parameters;
+        parameters.tangent_method                = method;
+        materials::MaterialSet<dim> materials(parameters, prm);
+        solid::SolidSystem<dim>     system(discretization,
+                                       materials,
+                                       boundary_conditions);
+        Vector<double>              residual;
+        double                      best = 1e300;
+        for (unsigned int r = 0; r < repetitions; ++r)
+          {
+            const auto start = std::chrono::steady_clock::now();
+            system.assemble(u, u_tilde, 1., 0., residual, true);
+            best = std::min(best,
+                            std::chrono::duration<double>(
+                              std::chrono::steady_clock::now() - start)
+                              .count());
+          }
+        const double per_cell = 1e6 * best / triangulation.n_active_cells();
+        double       difference = 0;
+        if (method == materials::TangentMethod::hand_coded)
+          {
+            hand_time = per_cell;
+            reference_sparsity.copy_from(system.tangent().get_sparsity_pattern());
+            reference.reinit(reference_sparsity);
+            reference.copy_from(system.tangent());
+          }
+        else
+          {
+            SparseMatrix<double> diff(reference_sparsity);
+            diff.copy_from(system.tangent());
+            diff.add(-1., reference);
+            difference = diff.linfty_norm() / reference.linfty_norm();
+          }
+        std::cout << std::setw(32) << name << std::fixed << std::setprecision(2)
+                  << std::setw(14) << per_cell << std::setw(16)
+                  << per_cell / hand_time << std::scientific
+                  << std::setprecision(1) << std::setw(34) << difference
+                  << std::defaultfloat << std::setprecision(6) << "\n";
+      }
+  }
+
+
+  template <int dim>
+  void
+  AssemblyBenchmark<dim>::run()
+  {
+    std::cout << "Assembly benchmark: Jacobian + residual of one deformed "
+                 "state, serial, fastest of "
+              << repetitions << " runs (wall time; ratios are the figure of "
+              << "merit)." << std::endl;
+    if (!Utilities::trim(hexahedra).empty())
+      benchmark_mesh("hypercube", hexahedra);
+    if (!Utilities::trim(tetrahedra).empty())
+      benchmark_mesh("simplex", tetrahedra);
+  }
+
+  template class AssemblyBenchmark<1>;
+  template class AssemblyBenchmark<2>;
+  template class AssemblyBenchmark<3>;
+
+  TISSUEFEM_REGISTER_PROBLEM(AssemblyBenchmark,
+                             "assembly benchmark",
+                             "times Jacobian assembly with each tangent "
+                             "method on a hexahedral and a tetrahedral box.")
+} // namespace tissuefem::problems
