@@ -5,6 +5,7 @@
 #include <tissuefem/base/parameter_tools.h>
 
 #include <cmath>
+#include <iostream>
 #include <map>
 #include <sstream>
 
@@ -88,6 +89,11 @@ namespace tissuefem
 
     auto function = std::make_unique<FunctionParser<dim>>(n_components);
     const std::map<std::string, double> constants = {{"pi", M_PI}};
+    // deal.II's muparser wrapper prints its own multi-line report of a
+    // syntax error to std::cerr; silence it, since the error is reported
+    // (on one line, naming the parameter) by the exception below.
+    std::ostringstream muted;
+    std::streambuf    *cerr_buffer = std::cerr.rdbuf(muted.rdbuf());
     try
       {
         function->initialize(expression_variables(dim),
@@ -98,9 +104,11 @@ namespace tissuefem
         // error surface here, where we can still name the parameter.
         Vector<double> values(n_components);
         function->vector_value(Point<dim>(), values);
+        std::cerr.rdbuf(cerr_buffer);
       }
     catch (const ExceptionBase &e)
       {
+        std::cerr.rdbuf(cerr_buffer);
         throw InputError("Parameter '" + parameter +
                          "': cannot parse expression '" + expressions +
                          "': " + one_line_message(e));
