@@ -5,6 +5,7 @@
 #include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/boundary/boundary_conditions.h>
 #include <tissuefem/geometry/geometry.h>
+#include <tissuefem/materials/consistency_check.h>
 #include <tissuefem/materials/material_set.h>
 #include <tissuefem/output/output_writer.h>
 #include <tissuefem/problems/interface.h>
@@ -93,6 +94,32 @@ namespace tissuefem
 
   namespace
   {
+    /// Checks every material a parameter file uses, in its dimension.
+    template <int dim>
+    bool
+    check_materials(ParameterHandler &prm)
+    {
+      materials::MaterialParameters parameters;
+      parameters.parse_parameters(prm);
+      std::vector<materials::ConsistencyReport> reports;
+      for (unsigned int i = 0; i < parameters.model_names.size(); ++i)
+        {
+          const auto model = materials::MaterialRegistry<dim>::instance().create(
+            parameters.model_names[i], parameters.constants[i], prm);
+          std::string label = parameters.model_names[i];
+          if (!parameters.material_ids.empty())
+            label += " (id " + std::to_string(parameters.material_ids[i]) + ")";
+          reports.push_back(materials::check_consistency<dim>(
+            label, *model, parameters.constants[i].mu));
+        }
+      materials::print_consistency_table(std::cout, reports);
+      bool all = true;
+      for (const auto &r : reports)
+        all = all && r.passes();
+      return all;
+    }
+
+
     void
     print_usage(std::ostream &out)
     {
@@ -103,6 +130,10 @@ namespace tissuefem
              "  tissuefem --validate FILE.prm [--set ...]\n"
              "      check the file (parameters, mesh, expressions, probes)\n"
              "      without computing or writing anything.\n"
+             "  tissuefem --check-material FILE.prm [--set ...]\n"
+             "      check each material the file uses against its own energy\n"
+             "      (finite differences, Taylor slopes, tangent methods,\n"
+             "      symmetry, frame indifference) and print a table.\n"
              "  tissuefem --print-parameters\n"
              "      list every parameter with its default and documentation.\n"
              "  tissuefem --help | --version\n"
@@ -119,6 +150,7 @@ namespace tissuefem
     std::vector<std::string> overrides;
     std::string              file;
     bool                     validate_only = false;
+    bool                     check_material = false;
     try
       {
         for (unsigned int i = 0; i < args.size(); ++i)
@@ -143,6 +175,8 @@ namespace tissuefem
               }
             if (a == "--validate")
               validate_only = true;
+            else if (a == "--check-material")
+              check_material = true;
             else if (a == "--set")
               {
                 if (i + 1 == args.size())
@@ -168,6 +202,14 @@ namespace tissuefem
         ParameterHandler prm;
         declare_all_parameters(prm);
         read_parameters(prm, file, overrides);
+        if (check_material)
+          {
+            const int  dim = prm.get_integer("Dimension");
+            const bool ok  = dim == 1 ? check_materials<1>(prm) :
+                             dim == 2 ? check_materials<2>(prm) :
+                                        check_materials<3>(prm);
+            return ok ? 0 : 3;
+          }
         problems::RunContext context;
         context.parameter_directory =
           std::filesystem::path(file).parent_path().string();

@@ -1,10 +1,12 @@
 #include <deal.II/base/utilities.h>
+#include <deal.II/lac/vector.h>
 
 #include <tissuefem/base/input_error.h>
 #include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/materials/material_set.h>
 
 #include <cmath>
+#include <sstream>
 
 namespace tissuefem::materials
 {
@@ -99,6 +101,23 @@ namespace tissuefem::materials
         "helper' (deal.II's Differentiation::AD::ScalarFunction with dynamic "
         "Sacado numbers, slowest) or 'hand coded' (closed form; neo-Hookean "
         "models only).");
+      prm.declare_entry(
+        "Fibre direction",
+        "1; 0; 0",
+        Patterns::Anything(),
+        "Reference fibre direction a for anisotropic models, 'a_x; a_y; a_z' "
+        "as functions of x, y, z (the first Dimension of them are read); normalized to unit "
+        "length at every quadrature point, and must not vanish there. Written "
+        "to the VTU output as 'fibre_direction'.");
+      prm.declare_entry(
+        "Formulation",
+        "displacement",
+        Patterns::Selection("displacement|edge length"),
+        "'displacement': P(F) at quadrature points; 'edge length': Jeffrey's "
+        "form (eqs 19-31), the element energy written through the squared "
+        "edge lengths of linear simplices (P1 triangles/tetrahedra only, "
+        "models written in C = F^T F: St Venant-Kirchhoff and the "
+        "transversely isotropic one).");
       MaterialRegistry<3>::instance().declare_parameters(prm);
     }
     prm.leave_subsection();
@@ -120,6 +139,20 @@ namespace tissuefem::materials
               "expected 1 or " + std::to_string(n) + " values (one per "
               "material id), got " + std::to_string(values.size()));
       return values;
+    }
+
+    /// The first @p n of the ';'-separated expressions in @p text (all of
+    /// them if there are fewer), so 3D defaults serve lower dimensions.
+    std::string
+    leading_components(const std::string &text, const unsigned int n)
+    {
+      std::vector<std::string> pieces = split_and_trim(text, ';');
+      if (pieces.size() > n)
+        pieces.resize(n);
+      std::string result;
+      for (const auto &p : pieces)
+        result += (result.empty() ? "" : "; ") + p;
+      return result;
     }
 
     std::vector<double>
@@ -182,7 +215,9 @@ namespace tissuefem::materials
             constants.push_back(ElasticConstants::from_young_poisson(E[i], nu[i]));
           }
       }
-    tangent_method = parse_tangent_method(prm.get("Tangent"));
+    tangent_method          = parse_tangent_method(prm.get("Tangent"));
+    fibre_direction         = prm.get("Fibre direction");
+    edge_length_formulation = prm.get("Formulation") == "edge length";
     prm.leave_subsection();
   }
 
@@ -191,6 +226,11 @@ namespace tissuefem::materials
   MaterialSet<dim>::MaterialSet(const MaterialParameters &parameters,
                                 const ParameterHandler   &prm)
     : method(parameters.tangent_method)
+    , fibre(make_function<dim>(leading_components(parameters.fibre_direction,
+                                                  dim),
+                               dim,
+                               "Materials/Fibre direction"))
+    , edge_length(parameters.edge_length_formulation)
   {
     for (unsigned int i = 0; i < parameters.model_names.size(); ++i)
       {
@@ -205,6 +245,11 @@ namespace tissuefem::materials
                 "Materials/Tangent",
                 "'hand coded' is not available for model '" +
                   parameters.model_names[i] + "'");
+        require(!edge_length || entry.model->has_edge_length_form(),
+                "Materials/Formulation",
+                "'edge length' is not available for model '" +
+                  parameters.model_names[i] +
+                  "' (it is not written in C = F^T F)");
         entries[key] = std::move(entry);
       }
   }
@@ -260,6 +305,38 @@ namespace tissuefem::materials
       if (!e.model->admits_inversion())
         return false;
     return true;
+  }
+
+  template <int dim>
+  bool
+  MaterialSet<dim>::any_uses_fibres() const
+  {
+    for (const auto &[id, e] : entries)
+      if (e.model->uses_fibres())
+        return true;
+    return false;
+  }
+
+
+  template <int dim>
+  Tensor<1, dim>
+  MaterialSet<dim>::fibre_direction(const Point<dim> &X) const
+  {
+    Vector<double> value(dim);
+    fibre->vector_value(X, value);
+    Tensor<1, dim> a;
+    for (unsigned int d = 0; d < dim; ++d)
+      a[d] = value[d];
+    const double length = a.norm();
+    if (!(length > 1e-12 && std::isfinite(length)))
+      {
+        std::ostringstream where;
+        where << X;
+        throw InputError("Parameter 'Materials/Fibre direction': the "
+                         "direction vanishes or is not finite at (" +
+                         where.str() + ")");
+      }
+    return a / length;
   }
 
   template class MaterialSet<1>;

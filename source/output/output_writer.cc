@@ -1,4 +1,5 @@
 #include <deal.II/base/data_out_base.h>
+#include <deal.II/base/utilities.h>
 #include <deal.II/numerics/data_component_interpretation.h>
 #include <deal.II/numerics/data_out.h>
 
@@ -40,6 +41,15 @@ namespace tissuefem::output
                       "directory) receiving the probe displacements and "
                       "elastic energy without timings or iteration counts, "
                       "for regression tests.");
+    prm.declare_entry("Reaction boundary ids",
+                      "",
+                      Patterns::List(Patterns::Integer(0, 254)),
+                      "Boundary ids whose reaction force goes to "
+                      "reactions.csv every step: the force the prescribed "
+                      "boundary applies to the body (force units), i.e. the "
+                      "sum of the unconstrained nodal residual over the "
+                      "boundary's nodes. A tool holding the boundary feels "
+                      "the opposite force.");
     prm.declare_entry("Summary interval",
                       "1",
                       Patterns::Integer(1),
@@ -57,6 +67,10 @@ namespace tissuefem::output
     probe_points     = prm.get("Probe points");
     summary_file     = prm.get("Summary file");
     summary_interval = prm.get_integer("Summary interval");
+    reaction_boundary_ids.clear();
+    for (const auto &id :
+         Utilities::split_string_list(prm.get("Reaction boundary ids")))
+      reaction_boundary_ids.push_back(Utilities::string_to_int(id));
     prm.leave_subsection();
     require(!directory.empty(), "Output/Directory", "must not be empty");
   }
@@ -113,6 +127,14 @@ namespace tissuefem::output
     for (unsigned int d = 0; d < dim; ++d)
       probes_file << ',' << displacement_names[d];
     probes_file << '\n' << std::flush;
+    if (!parameters.reaction_boundary_ids.empty())
+      {
+        open_or_fail(reactions_file, parameters.directory + "/reactions.csv");
+        reactions_file << "time,boundary";
+        for (unsigned int d = 0; d < dim; ++d)
+          reactions_file << ",F" << coordinate_names[d];
+        reactions_file << '\n' << std::flush;
+      }
     if (!parameters.summary_file.empty())
       {
         summary.open(parameters.summary_file);
@@ -135,9 +157,10 @@ namespace tissuefem::output
 
   template <int dim>
   void
-  OutputWriter<dim>::write_step(const StepStatistics &s,
-                                const Vector<double> &u,
-                                const Vector<double> &v)
+  OutputWriter<dim>::write_step(const StepStatistics              &s,
+                                const Vector<double>              &u,
+                                const Vector<double>              &v,
+                                const std::vector<Tensor<1, dim>> &reactions)
   {
     AssertThrow(u.all_zero() || std::isfinite(u.l2_norm()),
                 ExcMessage("refusing to write a non-finite displacement"));
@@ -168,6 +191,24 @@ namespace tissuefem::output
           }
       }
     probes_file << std::flush;
+    for (unsigned int b = 0; b < reactions.size(); ++b)
+      {
+        reactions_file << s.time << ','
+                       << int(parameters.reaction_boundary_ids[b]);
+        for (unsigned int d = 0; d < dim; ++d)
+          reactions_file << ',' << reactions[b][d];
+        reactions_file << '\n';
+        if (summarize)
+          {
+            summary << "t = " << s.time << " boundary "
+                    << int(parameters.reaction_boundary_ids[b])
+                    << " reaction =";
+            for (unsigned int d = 0; d < dim; ++d)
+              summary << ' ' << reactions[b][d];
+            summary << '\n';
+          }
+      }
+    reactions_file << std::flush;
     if (summarize)
       summary << std::flush;
 
@@ -207,6 +248,10 @@ namespace tissuefem::output
     data_out.add_data_vector(jacobian, "J");
     data_out.add_data_vector(von_mises, "von_Mises_Cauchy_stress");
     data_out.add_data_vector(material_id, "material_id");
+    const std::vector<Vector<float>> fibre = system.cell_fibre_directions();
+    static const char *fibre_names[] = {"fibre_x", "fibre_y", "fibre_z"};
+    for (unsigned int c = 0; c < fibre.size(); ++c)
+      data_out.add_data_vector(fibre[c], fibre_names[c]);
     data_out.build_patches(*d.mapping, d.fe->degree);
 
     std::ostringstream name;

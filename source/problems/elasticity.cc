@@ -3,6 +3,7 @@
 
 #include <tissuefem/problems/elasticity.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
@@ -67,6 +68,12 @@ namespace tissuefem::problems
                                          modes);
         linear_solver->set_constant_modes(modes);
       }
+    const auto present = triangulation.get_boundary_ids();
+    for (const auto id : output_parameters.reaction_boundary_ids)
+      require(std::find(present.begin(), present.end(), id) != present.end(),
+              "Output/Reaction boundary ids",
+              "boundary id " + std::to_string(id) +
+                " is on no boundary face of the mesh");
     writer = std::make_unique<output::OutputWriter<dim>>(output_parameters,
                                                          *system);
   }
@@ -93,7 +100,12 @@ namespace tissuefem::problems
     Vector<double> u, v, u_new, v_new, u_tilde;
     system->initial_state(u, v);
     system->apply_dirichlet_values(0., u);
-    writer->write_step({0, 0., 0., 0, 0., 0., 0.}, u, v);
+    const auto &reaction_ids = output_parameters.reaction_boundary_ids;
+    u_tilde = u;
+    writer->write_step({0, 0., 0., 0, 0., 0., 0.},
+                       u,
+                       v,
+                       system->reaction_forces(u, u_tilde, 0., 0., reaction_ids));
 
     const double end_time = time_parameters.end_time;
     double       t        = 0;
@@ -134,6 +146,12 @@ namespace tissuefem::problems
             h /= 2;
           }
 
+        const auto reactions =
+          system->reaction_forces(u_new,
+                                  u_tilde,
+                                  integrator->mass_coefficient(h),
+                                  t + h,
+                                  reaction_ids);
         integrator->velocity(u_new, u, v, h, v_new);
         u = u_new;
         v = v_new;
@@ -156,7 +174,7 @@ namespace tissuefem::problems
                   << result.residual_norms.back() << std::defaultfloat
                   << std::setprecision(6) << std::endl;
         TimerOutput::Scope scope(timer, "output");
-        writer->write_step(statistics, u, v);
+        writer->write_step(statistics, u, v, reactions);
       }
 
     std::ostringstream energy;

@@ -50,22 +50,63 @@ namespace tissuefem::solid
           }
       }
     body_force_present |= boundary_conditions.body_force->n_components != dim;
+
+    if (materials.edge_length_formulation())
+      require(discretization.simplex && discretization.fe->degree == 1,
+              "Materials/Formulation",
+              "'edge length' needs linear simplices (Geometry/Cell type = "
+              "simplex or a simplex mesh file, Polynomial degree = 1)");
+
+    if (materials.any_uses_fibres())
+      {
+        FEValues<dim> fe_values(*discretization.mapping,
+                                *discretization.fe,
+                                discretization.cell_quadrature,
+                                update_quadrature_points);
+        const unsigned int n_q = discretization.cell_quadrature.size();
+        fibres.resize(dof_handler.get_triangulation().n_active_cells() * n_q);
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          {
+            fe_values.reinit(cell);
+            for (unsigned int q = 0; q < n_q; ++q)
+              fibres[cell->active_cell_index() * n_q + q] =
+                materials.fibre_direction(fe_values.quadrature_point(q));
+          }
+      }
+  }
+
+
+  template <int dim>
+  const Tensor<1, dim> &
+  SolidSystem<dim>::fibre(const unsigned int cell_index,
+                          const unsigned int q) const
+  {
+    // Isotropic models ignore the direction; any unit vector will do.
+    static const Tensor<1, dim> unused = [] {
+      Tensor<1, dim> e;
+      e[0] = 1.;
+      return e;
+    }();
+    if (fibres.empty())
+      return unused;
+    return fibres[cell_index * discretization.cell_quadrature.size() + q];
   }
 
 
   template <int dim>
   void
   SolidSystem<dim>::check_not_inverted(
-    const double                     J,
-    const Point<dim>                &where,
-    const materials::Interface<dim> &material) const
+    const double                                          J,
+    const typename DoFHandler<dim>::active_cell_iterator &cell,
+    const materials::Interface<dim>                      &material) const
   {
     if (J > 0 || material.admits_inversion())
       return;
     std::ostringstream message;
-    message << "element inverted (det F = " << J << ") at reference point ("
-            << where << "); the material model is undefined for det F <= 0 "
-            << "(use 'robust neo-Hookean' for scenes that invert elements)";
+    message << "element inverted (det F = " << J << ") in cell "
+            << cell->active_cell_index() << " centred at (" << cell->center()
+            << "); the material model is undefined for det F <= 0 (use "
+            << "'robust neo-Hookean' for scenes that invert elements)";
     throw InvertedElementError(message.str());
   }
 
@@ -78,6 +119,53 @@ namespace tissuefem::solid
                              const double          time,
                              Vector<double>       &residual,
                              const bool            with_tangent)
+  {
+    assemble_with(
+      constraints, u, u_tilde, mass_coefficient, time, residual, with_tangent);
+  }
+
+
+  template <int dim>
+  std::vector<Tensor<1, dim>>
+  SolidSystem<dim>::reaction_forces(
+    const Vector<double>                  &u,
+    const Vector<double>                  &u_tilde,
+    const double                           mass_coefficient,
+    const double                           time,
+    const std::vector<types::boundary_id> &boundary_ids)
+  {
+    std::vector<Tensor<1, dim>> forces(boundary_ids.size());
+    if (boundary_ids.empty())
+      return forces;
+    no_constraints.close();
+    Vector<double> residual;
+    assemble_with(
+      no_constraints, u, u_tilde, mass_coefficient, time, residual, false);
+    const auto &dof_handler = discretization.dof_handler;
+    for (unsigned int b = 0; b < boundary_ids.size(); ++b)
+      for (unsigned int c = 0; c < dim; ++c)
+        {
+          std::vector<bool> mask(dim, false);
+          mask[c] = true;
+          const IndexSet dofs = DoFTools::extract_boundary_dofs(
+            dof_handler, ComponentMask(mask), {boundary_ids[b]});
+          for (const auto dof : dofs)
+            forces[b][c] += residual[dof];
+        }
+    return forces;
+  }
+
+
+  template <int dim>
+  void
+  SolidSystem<dim>::assemble_with(
+    const AffineConstraints<double> &row_constraints,
+    const Vector<double>            &u,
+    const Vector<double>            &u_tilde,
+    const double                     mass_coefficient,
+    const double                     time,
+    Vector<double>                  &residual,
+    const bool                       with_tangent)
   {
     const auto        &fe = *discretization.fe;
     const unsigned int n  = fe.n_dofs_per_cell();
@@ -112,6 +200,7 @@ namespace tissuefem::solid
     Tensor<2, dim>              P;
     Tensor<4, dim>              A;
     const auto                  method = materials.tangent_method();
+    const bool edge_length = materials.edge_length_formulation();
 
     for (const auto &cell : discretization.dof_handler.active_cell_iterators())
       {
@@ -139,11 +228,19 @@ namespace tissuefem::solid
                 F[component[i]] += u_cell[i] * grads[i];
                 inertia[component[i]] += inertia_cell[i] * values[i];
               }
-            check_not_inverted(determinant(F), cell->center(), material);
-            if (with_tangent)
-              material.stress_and_tangent(F, P, A, method);
+            check_not_inverted(determinant(F), cell, material);
+            const Tensor<1, dim> &a = fibre(cell->active_cell_index(), q);
+            if (edge_length)
+              {
+                // The element's elastic forces come from its edge lengths
+                // below; here only loads and inertia.
+                P = 0;
+                A = 0;
+              }
+            else if (with_tangent)
+              material.stress_and_tangent(F, a, P, A, method);
             else
-              P = material.stress(F);
+              P = material.stress(F, a);
 
             Tensor<1, dim> load = rho * boundary_conditions.gravity;
             if (body_force_present)
@@ -178,6 +275,14 @@ namespace tissuefem::solid
               }
           }
 
+        if (edge_length)
+          add_edge_length_element(cell,
+                                  fe_values,
+                                  u_cell,
+                                  material,
+                                  cell_rhs,
+                                  with_tangent ? &cell_matrix : nullptr);
+
         for (const auto &face : cell->face_iterators())
           if (face->at_boundary())
             for (const auto &neumann : boundary_conditions.neumann)
@@ -201,11 +306,62 @@ namespace tissuefem::solid
             for (unsigned int i = 0; i < n; ++i)
               for (unsigned int j = 0; j < i; ++j)
                 cell_matrix(i, j) = cell_matrix(j, i);
-            constraints.distribute_local_to_global(
+            row_constraints.distribute_local_to_global(
               cell_matrix, cell_rhs, dofs, tangent_matrix, residual);
           }
         else
-          constraints.distribute_local_to_global(cell_rhs, dofs, residual);
+          row_constraints.distribute_local_to_global(cell_rhs, dofs, residual);
+      }
+  }
+
+
+  template <int dim>
+  void
+  SolidSystem<dim>::add_edge_length_element(
+    const typename DoFHandler<dim>::active_cell_iterator &cell,
+    const FEValues<dim>                                  &fe_values,
+    const std::vector<double>                            &u_cell,
+    const materials::Interface<dim>                      &material,
+    Vector<double>                                       &cell_rhs,
+    FullMatrix<double>                                   *cell_matrix) const
+  {
+    // For P1 simplices, shape function i belongs to vertex
+    // system_to_component_index(i).second; the element's unknowns are
+    // indexed vertex * dim + component.
+    const auto                 &fe = *discretization.fe;
+    const unsigned int          n  = fe.n_dofs_per_cell();
+    std::vector<unsigned int>   element_index(n);
+    std::vector<Tensor<1, dim>> alpha(dim + 1), Q(dim + 1);
+    for (unsigned int v = 0; v <= dim; ++v)
+      Q[v] = cell->vertex(v);
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        const auto [component, vertex] = fe.system_to_component_index(i);
+        element_index[i]               = vertex * dim + component;
+        Q[vertex][component] += u_cell[i];
+        if (component == 0)
+          alpha[vertex] = fe_values.shape_grad(i, 0);
+      }
+    double volume = 0;
+    for (const unsigned int q : fe_values.quadrature_point_indices())
+      volume += fe_values.JxW(q);
+
+    double              energy;
+    std::vector<double> forces, stiffness;
+    material.edge_length_element(alpha,
+                                 volume,
+                                 Q,
+                                 fibre(cell->active_cell_index(), 0),
+                                 energy,
+                                 forces,
+                                 cell_matrix ? &stiffness : nullptr);
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        cell_rhs[i] += forces[element_index[i]];
+        if (cell_matrix)
+          for (unsigned int j = i; j < n; ++j)
+            (*cell_matrix)(i, j) +=
+              stiffness[element_index[i] * n + element_index[j]];
       }
   }
 
@@ -293,13 +449,13 @@ namespace tissuefem::solid
     for_each_deformation_gradient(
       discretization,
       u,
-      [&](const auto &cell, unsigned int, const Tensor<2, dim> &F, double) {
+      [&](const auto &cell, unsigned int q, const Tensor<2, dim> &F, double) {
         const double J = determinant(F);
         jacobian[cell->active_cell_index()] += J / n_q;
         if (J <= 0 && !materials.material(cell->material_id()).admits_inversion())
           return;
         const Tensor<2, dim> P =
-          materials.material(cell->material_id()).stress(F);
+          materials.material(cell->material_id()).stress(F, fibre(cell->active_cell_index(), q));
         const Tensor<2, dim> sigma = (J != 0 ? 1. / J : 0.) * P * transpose(F);
         const double         mean  = trace(sigma) / dim;
         Tensor<2, dim>       deviator = sigma;
@@ -319,11 +475,35 @@ namespace tissuefem::solid
     for_each_deformation_gradient(
       discretization,
       u,
-      [&](const auto &cell, unsigned int, const Tensor<2, dim> &F, double JxW) {
-        energy +=
-          materials.material(cell->material_id()).energy_density(F) * JxW;
+      [&](const auto &cell, unsigned int q, const Tensor<2, dim> &F, double JxW) {
+        energy += materials.material(cell->material_id())
+                    .energy_density(F, fibre(cell->active_cell_index(), q)) *
+                  JxW;
       });
     return energy;
+  }
+
+
+  template <int dim>
+  std::vector<Vector<float>>
+  SolidSystem<dim>::cell_fibre_directions() const
+  {
+    std::vector<Vector<float>> result;
+    if (fibres.empty())
+      return result;
+    const auto        &triangulation = discretization.dof_handler.get_triangulation();
+    const unsigned int n_q           = discretization.cell_quadrature.size();
+    result.assign(dim, Vector<float>(triangulation.n_active_cells()));
+    for (unsigned int c = 0; c < triangulation.n_active_cells(); ++c)
+      {
+        Tensor<1, dim> mean;
+        for (unsigned int q = 0; q < n_q; ++q)
+          mean += fibres[c * n_q + q];
+        mean /= std::max(mean.norm(), 1e-300);
+        for (unsigned int d = 0; d < dim; ++d)
+          result[d][c] = mean[d];
+      }
+    return result;
   }
 
   template class SolidSystem<1>;

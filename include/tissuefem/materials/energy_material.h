@@ -1,6 +1,9 @@
 #pragma once
 
 #include <deal.II/differentiation/ad.h>
+#include <deal.II/fe/fe_values_extractors.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/vector.h>
 
 #include <tissuefem/base/input_error.h>
 #include <tissuefem/materials/interface.h>
@@ -24,11 +27,25 @@ namespace tissuefem::materials
     : std::true_type
   {};
 
+  /// Whether @p Model writes its energy in C = F^T F (energy_in_C).
+  template <typename Model, int dim, typename = void>
+  struct HasEnergyInC : std::false_type
+  {};
+  template <typename Model, int dim>
+  struct HasEnergyInC<Model,
+                      dim,
+                      std::void_t<decltype(std::declval<const Model &>().energy_in_C(
+                        std::declval<const SmallMatrix<dim, double> &>(),
+                        std::declval<const Tensor<1, dim> &>()))>>
+    : std::true_type
+  {};
+
   /**
    * Turns an energy density into a material: @p Model writes
    *
    *   template <typename Number>
-   *   Number energy(const SmallMatrix<dim, Number> &F) const;
+   *   Number energy(const SmallMatrix<dim, Number> &F,
+   *                 const Tensor<1, dim> &fibre) const;
    *
    * once, and this class differentiates it. An isotropic model may in
    * addition write its energy in the invariants I1 = tr F^T F and J = det F,
@@ -36,7 +53,13 @@ namespace tissuefem::materials
    *   template <typename Number>
    *   Number invariant_energy(const Number &I1, const Number &J) const;
    *
-   * (its energy(F) then just evaluates the invariants).
+   * and a model written in C = F^T F may provide
+   *
+   *   template <typename Number>
+   *   Number energy_in_C(const SmallMatrix<dim, Number> &C,
+   *                      const Tensor<1, dim> &fibre) const;
+   *
+   * which enables the edge-length element (Jeffrey eqs 19-31).
    *
    * Tangent methods:
    * - automatic differentiation: for invariant models, the five first and
@@ -58,23 +81,24 @@ namespace tissuefem::materials
     using SecondOrder              = Sacado::Fad::SFad<FirstOrder, n_entries>;
 
     double
-    energy_density(const Tensor<2, dim> &F) const override
+    energy_density(const Tensor<2, dim> &F,
+                   const Tensor<1, dim> &fibre) const override
     {
       SmallMatrix<dim, double> F_small;
       for (unsigned int i = 0; i < dim; ++i)
         for (unsigned int j = 0; j < dim; ++j)
           F_small[i][j] = F[i][j];
-      return model().energy(F_small);
+      return model().energy(F_small, fibre);
     }
 
     Tensor<2, dim>
-    stress(const Tensor<2, dim> &F) const override
+    stress(const Tensor<2, dim> &F, const Tensor<1, dim> &fibre) const override
     {
       SmallMatrix<dim, FirstOrder> F_ad;
       for (unsigned int i = 0; i < dim; ++i)
         for (unsigned int j = 0; j < dim; ++j)
           F_ad[i][j] = FirstOrder(n_entries, i * dim + j, F[i][j]);
-      const FirstOrder psi = model().energy(F_ad);
+      const FirstOrder psi = model().energy(F_ad, fibre);
       Tensor<2, dim>   P;
       for (unsigned int i = 0; i < dim; ++i)
         for (unsigned int j = 0; j < dim; ++j)
@@ -84,6 +108,7 @@ namespace tissuefem::materials
 
     void
     stress_and_tangent(const Tensor<2, dim> &F,
+                       const Tensor<1, dim> &fibre,
                        Tensor<2, dim>       &P,
                        Tensor<4, dim>       &A,
                        const TangentMethod   method) const override
@@ -94,18 +119,40 @@ namespace tissuefem::materials
             if constexpr (HasInvariantEnergy<Model>::value)
               invariant_ad(F, P, A);
             else
-              fixed_size_ad(F, P, A);
+              fixed_size_ad(F, fibre, P, A);
             return;
           case TangentMethod::automatic_differentiation_in_F:
-            fixed_size_ad(F, P, A);
+            fixed_size_ad(F, fibre, P, A);
             return;
           case TangentMethod::dealii_ad_helper:
-            dealii_helper(F, P, A);
+            dealii_helper(F, fibre, P, A);
             return;
           case TangentMethod::hand_coded:
             hand_coded_stress_and_tangent(F, P, A);
             return;
         }
+    }
+
+    bool
+    has_edge_length_form() const override
+    {
+      return HasEnergyInC<Model, dim>::value;
+    }
+
+    void
+    edge_length_element(const std::vector<Tensor<1, dim>> &alpha,
+                        const double                       volume,
+                        const std::vector<Tensor<1, dim>> &Q,
+                        const Tensor<1, dim>              &fibre,
+                        double                            &energy,
+                        std::vector<double>               &forces,
+                        std::vector<double> *stiffness) const override
+    {
+      if constexpr (HasEnergyInC<Model, dim>::value)
+        edge_length_ad(alpha, volume, Q, fibre, energy, forces, stiffness);
+      else
+        Interface<dim>::edge_length_element(
+          alpha, volume, Q, fibre, energy, forces, stiffness);
     }
 
   protected:
@@ -140,15 +187,15 @@ namespace tissuefem::materials
     {
       using Inner = Sacado::Fad::SFad<double, 2>;
       using Outer = Sacado::Fad::SFad<Inner, 2>;
-      const Outer I1(2, 0, Inner(2, 0, F.norm_square()));
-      const Outer J(2, 1, Inner(2, 1, determinant(F)));
-      const Outer psi      = model().invariant_energy(I1, J);
-      const double psi_1   = psi.dx(0).val();
-      const double psi_J   = psi.dx(1).val();
-      const double psi_11  = psi.dx(0).dx(0);
-      const double psi_1J  = psi.dx(0).dx(1);
-      const double psi_JJ  = psi.dx(1).dx(1);
-      const Tensor<2, dim> cof = cofactor(F);
+      const Outer          I1(2, 0, Inner(2, 0, F.norm_square()));
+      const Outer          J(2, 1, Inner(2, 1, determinant(F)));
+      const Outer          psi    = model().invariant_energy(I1, J);
+      const double         psi_1  = psi.dx(0).val();
+      const double         psi_J  = psi.dx(1).val();
+      const double         psi_11 = psi.dx(0).dx(0);
+      const double         psi_1J = psi.dx(0).dx(1);
+      const double         psi_JJ = psi.dx(1).dx(1);
+      const Tensor<2, dim> cof    = cofactor(F);
 
       P = (2. * psi_1) * F + psi_J * cof;
       // One fused pass: A_ijkl = x_ij F_kl + y_ij cof_kl + 2 Psi_1 d_ik d_jl
@@ -168,6 +215,7 @@ namespace tissuefem::materials
 
     void
     fixed_size_ad(const Tensor<2, dim> &F,
+                  const Tensor<1, dim> &fibre,
                   Tensor<2, dim>       &P,
                   Tensor<4, dim>       &A) const
     {
@@ -176,10 +224,11 @@ namespace tissuefem::materials
         for (unsigned int j = 0; j < dim; ++j)
           {
             const int index = i * dim + j;
-            F_ad[i][j] =
-              SecondOrder(n_entries, index, FirstOrder(n_entries, index, F[i][j]));
+            F_ad[i][j]      = SecondOrder(n_entries,
+                                     index,
+                                     FirstOrder(n_entries, index, F[i][j]));
           }
-      const SecondOrder psi = model().energy(F_ad);
+      const SecondOrder psi = model().energy(F_ad, fibre);
       for (unsigned int i = 0; i < dim; ++i)
         for (unsigned int j = 0; j < dim; ++j)
           {
@@ -193,13 +242,14 @@ namespace tissuefem::materials
 
     void
     dealii_helper(const Tensor<2, dim> &F,
+                  const Tensor<1, dim> &fibre,
                   Tensor<2, dim>       &P,
                   Tensor<4, dim>       &A) const
     {
       using namespace Differentiation;
       constexpr auto number_type = AD::NumberTypes::sacado_dfad_dfad;
-      using Helper = AD::ScalarFunction<dim, number_type, double>;
-      using ADNumber                     = typename Helper::ad_type;
+      using Helper   = AD::ScalarFunction<dim, number_type, double>;
+      using ADNumber = typename Helper::ad_type;
       const FEValuesExtractors::Tensor<2> F_extractor(0);
 
       Helper helper(Tensor<2, dim>::n_independent_components);
@@ -210,7 +260,7 @@ namespace tissuefem::materials
       for (unsigned int i = 0; i < dim; ++i)
         for (unsigned int j = 0; j < dim; ++j)
           F_small[i][j] = F_ad[i][j];
-      helper.register_dependent_variable(model().energy(F_small));
+      helper.register_dependent_variable(model().energy(F_small, fibre));
 
       Vector<double>     gradient(helper.n_independent_variables());
       FullMatrix<double> hessian(helper.n_independent_variables(),
@@ -219,6 +269,61 @@ namespace tissuefem::materials
       helper.compute_hessian(hessian);
       P = helper.extract_gradient_component(gradient, F_extractor);
       A = helper.extract_hessian_component(hessian, F_extractor, F_extractor);
+    }
+
+    /// W = V Psi(C(L^2)) differentiated twice in the (dim + 1) * dim nodal
+    /// coordinates with fixed-size nested Sacado numbers.
+    void
+    edge_length_ad(const std::vector<Tensor<1, dim>> &alpha,
+                   const double                       volume,
+                   const std::vector<Tensor<1, dim>> &Q,
+                   const Tensor<1, dim>              &fibre,
+                   double                            &energy,
+                   std::vector<double>               &forces,
+                   std::vector<double>               *stiffness) const
+    {
+      constexpr int n = (dim + 1) * dim;
+      using Inner     = Sacado::Fad::SFad<double, n>;
+      using Outer     = Sacado::Fad::SFad<Inner, n>;
+      Outer q[dim + 1][dim];
+      for (unsigned int a = 0; a <= dim; ++a)
+        for (unsigned int c = 0; c < dim; ++c)
+          {
+            const int index = a * dim + c;
+            q[a][c] = Outer(n, index, Inner(n, index, Q[a][c]));
+          }
+      // Eq 26: C = -1/2 sum_{j != k} L_jk^2 alpha_j (x) alpha_k, summed over
+      // the edges j < k with both orders.
+      SmallMatrix<dim, Outer> C;
+      for (unsigned int m = 0; m < dim; ++m)
+        for (unsigned int l = 0; l < dim; ++l)
+          C[m][l] = Outer(0.);
+      for (unsigned int j = 0; j <= dim; ++j)
+        for (unsigned int k = j + 1; k <= dim; ++k)
+          {
+            Outer length_squared = Outer(0.);
+            for (unsigned int c = 0; c < dim; ++c)
+              {
+                const Outer difference = q[j][c] - q[k][c];
+                length_squared += difference * difference;
+              }
+            for (unsigned int m = 0; m < dim; ++m)
+              for (unsigned int l = 0; l < dim; ++l)
+                C[m][l] -= 0.5 * length_squared *
+                           (alpha[j][m] * alpha[k][l] + alpha[k][m] * alpha[j][l]);
+          }
+      const Outer W = volume * model().energy_in_C(C, fibre);
+      energy        = W.val().val();
+      forces.resize(n);
+      if (stiffness)
+        stiffness->resize(n * n);
+      for (int i = 0; i < n; ++i)
+        {
+          forces[i] = W.dx(i).val();
+          if (stiffness)
+            for (int j = 0; j < n; ++j)
+              (*stiffness)[i * n + j] = W.dx(i).dx(j);
+        }
     }
   };
 } // namespace tissuefem::materials

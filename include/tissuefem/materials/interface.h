@@ -50,9 +50,10 @@ namespace tissuefem::materials
   };
 
   /**
-   * A hyperelastic material: an energy density Psi(F) per unit reference
+   * A hyperelastic material: an energy density Psi(F; a) per unit reference
    * volume, its first Piola-Kirchhoff stress P = dPsi/dF and the tangent
-   * A = dP/dF, with A_ijkl = d P_ij / d F_kl.
+   * A = dP/dF, with A_ijkl = d P_ij / d F_kl. The unit vector a is the
+   * reference fibre direction at the point; isotropic models ignore it.
    */
   template <int dim>
   class Interface
@@ -61,16 +62,61 @@ namespace tissuefem::materials
     virtual ~Interface() = default;
 
     virtual double
-    energy_density(const Tensor<2, dim> &F) const = 0;
+    energy_density(const Tensor<2, dim> &F,
+                   const Tensor<1, dim> &fibre) const = 0;
 
     virtual Tensor<2, dim>
-    stress(const Tensor<2, dim> &F) const = 0;
+    stress(const Tensor<2, dim> &F, const Tensor<1, dim> &fibre) const = 0;
 
     virtual void
     stress_and_tangent(const Tensor<2, dim> &F,
+                       const Tensor<1, dim> &fibre,
                        Tensor<2, dim>       &P,
                        Tensor<4, dim>       &A,
                        const TangentMethod   method) const = 0;
+
+    /// Whether the energy depends on the fibre direction.
+    virtual bool
+    uses_fibres() const
+    {
+      return false;
+    }
+
+    /// Whether Psi(QF) = Psi(F) for rotations Q (false for small-strain
+    /// linear elasticity).
+    virtual bool
+    frame_indifferent() const
+    {
+      return true;
+    }
+
+    /**
+     * Whether the model is written in the right Cauchy-Green tensor C and so
+     * admits the edge-length formulation of edge_length_element().
+     */
+    virtual bool
+    has_edge_length_form() const
+    {
+      return false;
+    }
+
+    /**
+     * Energy, nodal forces dW/dQ and stiffness d2W/dQ2 of one linear simplex
+     * (dim + 1 nodes) written through its squared edge lengths (Jeffrey eqs
+     * 19-31): C = -1/2 sum_{j != k} L_jk^2 alpha_j (x) alpha_k (eq 26), with
+     * alpha_j the reference gradients of the barycentric coordinates, and
+     * W = V Psi(C). Q holds the deformed node positions; forces and
+     * stiffness are indexed node * dim + component. Differentiated by
+     * automatic differentiation of W with respect to Q.
+     */
+    virtual void
+    edge_length_element(const std::vector<Tensor<1, dim>> &alpha,
+                        const double                       volume,
+                        const std::vector<Tensor<1, dim>> &Q,
+                        const Tensor<1, dim>              &fibre,
+                        double                            &energy,
+                        std::vector<double>               &forces,
+                        std::vector<double>               *stiffness) const;
 
     /// Whether stress_and_tangent() accepts TangentMethod::hand_coded.
     virtual bool
@@ -83,6 +129,20 @@ namespace tissuefem::materials
     virtual bool
     admits_inversion() const = 0;
   };
+
+  template <int dim>
+  inline void
+  Interface<dim>::edge_length_element(const std::vector<Tensor<1, dim>> &,
+                                      const double,
+                                      const std::vector<Tensor<1, dim>> &,
+                                      const Tensor<1, dim> &,
+                                      double &,
+                                      std::vector<double> &,
+                                      std::vector<double> *) const
+  {
+    throw InputError("Parameter 'Materials/Formulation': the material has no "
+                     "edge-length form (it is not written in C = F^T F)");
+  }
 
   /// The table of materials: name -> factory from the elastic constants and
   /// the parameter handler (for a model's own subsection).

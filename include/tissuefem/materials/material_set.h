@@ -1,5 +1,6 @@
 #pragma once
 
+#include <deal.II/base/function_parser.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/grid/tria.h>
 
@@ -29,6 +30,8 @@ namespace tissuefem::materials
     std::vector<ElasticConstants> constants;
     std::vector<double>           densities;
     TangentMethod                 tangent_method;
+    std::string                   fibre_direction;
+    bool                          edge_length_formulation;
   };
 
   template <int dim>
@@ -60,6 +63,23 @@ namespace tissuefem::materials
     bool
     all_admit_inversion() const;
 
+    /// Whether any material depends on the fibre direction.
+    bool
+    any_uses_fibres() const;
+
+    /// The unit fibre direction at reference point @p X (the 'Fibre
+    /// direction' expression, normalized). Throws InputError where the
+    /// expression vanishes.
+    Tensor<1, dim>
+    fibre_direction(const Point<dim> &X) const;
+
+    /// Whether elements use Jeffrey's edge-length formulation.
+    bool
+    edge_length_formulation() const
+    {
+      return edge_length;
+    }
+
   private:
     struct Entry
     {
@@ -68,8 +88,10 @@ namespace tissuefem::materials
     };
     /// Either keyed by material id, or a single entry for all cells (key
     /// numbers::invalid_material_id).
-    std::map<types::material_id, Entry> entries;
-    TangentMethod                       method;
+    std::map<types::material_id, Entry>  entries;
+    TangentMethod                        method;
+    std::unique_ptr<FunctionParser<dim>> fibre;
+    bool                                 edge_length;
 
     const Entry &
     entry(const types::material_id id) const;

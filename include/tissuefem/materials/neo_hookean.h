@@ -90,7 +90,7 @@ namespace tissuefem::materials
 
     template <typename Number>
     Number
-    energy(const SmallMatrix<dim, Number> &F) const
+    energy(const SmallMatrix<dim, Number> &F, const Tensor<1, dim> &) const
     {
       return invariant_energy(first_invariant<dim, Number>(F),
                               determinant<dim, Number>(F));

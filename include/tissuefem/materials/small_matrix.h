@@ -39,20 +39,62 @@ namespace tissuefem::materials
     return result;
   }
 
-  /// The Green-Lagrange strain E = (F^T F - I) / 2.
+  /// C = F^T F, the right Cauchy-Green tensor.
   template <int dim, typename Number>
   SmallMatrix<dim, Number>
-  green_lagrange_strain(const SmallMatrix<dim, Number> &F)
+  right_cauchy_green(const SmallMatrix<dim, Number> &F)
+  {
+    SmallMatrix<dim, Number> C;
+    for (unsigned int i = 0; i < dim; ++i)
+      for (unsigned int j = 0; j < dim; ++j)
+        {
+          C[i][j] = F[0][i] * F[0][j];
+          for (unsigned int k = 1; k < dim; ++k)
+            C[i][j] += F[k][i] * F[k][j];
+        }
+    return C;
+  }
+
+  /// E = (C - I) / 2, the Green-Lagrange strain from C.
+  template <int dim, typename Number>
+  SmallMatrix<dim, Number>
+  green_lagrange_from_C(const SmallMatrix<dim, Number> &C)
   {
     SmallMatrix<dim, Number> E;
     for (unsigned int i = 0; i < dim; ++i)
       for (unsigned int j = 0; j < dim; ++j)
-        {
-          E[i][j] = F[0][i] * F[0][j];
-          for (unsigned int k = 1; k < dim; ++k)
-            E[i][j] += F[k][i] * F[k][j];
-          E[i][j] = 0.5 * (E[i][j] - (i == j ? 1. : 0.));
-        }
+        E[i][j] = 0.5 * (C[i][j] - (i == j ? 1. : 0.));
     return E;
+  }
+
+  template <int dim, typename Number>
+  Number
+  trace(const SmallMatrix<dim, Number> &M)
+  {
+    Number result = M[0][0];
+    for (unsigned int i = 1; i < dim; ++i)
+      result += M[i][i];
+    return result;
+  }
+
+  /// M : M = M_ij M_ij.
+  template <int dim, typename Number>
+  Number
+  squared_norm(const SmallMatrix<dim, Number> &M)
+  {
+    return first_invariant<dim, Number>(M);
+  }
+
+  /// a . M a for a constant vector a.
+  template <int dim, typename Number, typename Vector>
+  Number
+  quadratic_form(const SmallMatrix<dim, Number> &M, const Vector &a)
+  {
+    Number result = M[0][0] * (a[0] * a[0]);
+    for (unsigned int i = 0; i < dim; ++i)
+      for (unsigned int j = 0; j < dim; ++j)
+        if (i + j > 0)
+          result += M[i][j] * (a[i] * a[j]);
+    return result;
   }
 } // namespace tissuefem::materials

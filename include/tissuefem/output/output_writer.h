@@ -26,6 +26,7 @@ namespace tissuefem::output
     std::string  probe_points;
     std::string  summary_file;
     unsigned int summary_interval;
+    std::vector<types::boundary_id> reaction_boundary_ids;
   };
 
   /// What one time step reports to statistics.csv and the screen.
@@ -44,6 +45,7 @@ namespace tissuefem::output
    *   Mises stress and material id, every 'VTU interval' steps;
    * - statistics.csv: one row per step;
    * - probes.csv: displacement at the probe points, long form, every step;
+   * - reactions.csv: force through each 'Reaction boundary ids' boundary;
    * - the optional summary file: probe values and energy without timings,
    *   for regression tests.
    * Files are created only by open(), after all input has been checked;
@@ -61,10 +63,12 @@ namespace tissuefem::output
     void
     open();
 
+    /// @p reactions holds one force per 'Reaction boundary ids' entry.
     void
-    write_step(const StepStatistics &statistics,
-               const Vector<double> &u,
-               const Vector<double> &v);
+    write_step(const StepStatistics              &statistics,
+               const Vector<double>              &u,
+               const Vector<double>              &v,
+               const std::vector<Tensor<1, dim>> &reactions);
 
     /// Writes a free-form line to the summary file (if any).
     void
@@ -74,7 +78,7 @@ namespace tissuefem::output
     OutputParameters                  parameters;
     const solid::SolidSystem<dim>    &system;
     std::unique_ptr<Probes<dim>>      probes;
-    std::ofstream                     statistics_file, probes_file, summary;
+    std::ofstream statistics_file, probes_file, reactions_file, summary;
     std::vector<std::pair<double, std::string>> pvd_records;
 
     void

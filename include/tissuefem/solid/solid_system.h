@@ -1,5 +1,6 @@
 #pragma once
 
+#include <deal.II/fe/fe_values.h>
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/sparsity_pattern.h>
@@ -50,6 +51,20 @@ namespace tissuefem::solid
              Vector<double>       &residual,
              const bool            with_tangent);
 
+    /**
+     * The force the supports apply to the body through each boundary in
+     * @p boundary_ids: the sum, over the degrees of freedom on that
+     * boundary, of the unconstrained residual c M (u - u_tilde) + f_int(u)
+     * - f_ext (force units; a tool holding that boundary feels the
+     * opposite). With the arguments of the step just solved.
+     */
+    std::vector<Tensor<1, dim>>
+    reaction_forces(const Vector<double>                  &u,
+                    const Vector<double>                  &u_tilde,
+                    const double                           mass_coefficient,
+                    const double                           time,
+                    const std::vector<types::boundary_id> &boundary_ids);
+
     /// The Jacobian of the last assemble() call with @p with_tangent.
     SparseMatrix<double> &
     tangent()
@@ -86,6 +101,19 @@ namespace tissuefem::solid
     double
     elastic_energy(const Vector<double> &u) const;
 
+    /// Whether any material is anisotropic (and fibre_directions() is
+    /// meaningful).
+    bool
+    has_fibres() const
+    {
+      return !fibres.empty();
+    }
+
+    /// The cell averages of the unit fibre direction, one vector per
+    /// component (empty if no material uses fibres).
+    std::vector<Vector<float>>
+    cell_fibre_directions() const;
+
     unsigned int
     n_dofs() const
     {
@@ -103,15 +131,42 @@ namespace tissuefem::solid
     const materials::MaterialSet<dim> &materials;
     boundary::BoundaryConditions<dim> &boundary_conditions;
     AffineConstraints<double>          constraints;
+    /// Empty: distributes into every row (for reaction forces).
+    AffineConstraints<double>          no_constraints;
     SparsityPattern                    sparsity;
     SparseMatrix<double>               tangent_matrix;
     bool                               body_force_present;
+    /// The unit fibre direction at quadrature point q of cell c, stored at
+    /// c * n_q + q; empty when no material uses fibres.
+    std::vector<Tensor<1, dim>>        fibres;
+
+    const Tensor<1, dim> &
+    fibre(const unsigned int cell_index, const unsigned int q) const;
+
+    /// Adds the edge-length element's forces and stiffness (Jeffrey eqs
+    /// 19-31) to the cell residual and matrix.
+    void
+    add_edge_length_element(const typename DoFHandler<dim>::active_cell_iterator &cell,
+                            const FEValues<dim>             &fe_values,
+                            const std::vector<double>       &u_cell,
+                            const materials::Interface<dim> &material,
+                            Vector<double>                  &cell_rhs,
+                            FullMatrix<double>              *cell_matrix) const;
+
+    void
+    assemble_with(const AffineConstraints<double> &row_constraints,
+                  const Vector<double>            &u,
+                  const Vector<double>            &u_tilde,
+                  const double                     mass_coefficient,
+                  const double                     time,
+                  Vector<double>                  &residual,
+                  const bool                       with_tangent);
 
     /// Throws InvertedElementError if J <= 0 for a material that cannot
     /// represent inversion.
     void
-    check_not_inverted(const double                 J,
-                       const Point<dim>            &where,
+    check_not_inverted(const double                     J,
+                       const typename DoFHandler<dim>::active_cell_iterator &cell,
                        const materials::Interface<dim> &material) const;
   };
 } // namespace tissuefem::solid

@@ -1,0 +1,68 @@
+#pragma once
+
+#include <tissuefem/materials/energy_material.h>
+
+namespace tissuefem::materials
+{
+  /**
+   * Picinbono's transversely isotropic St Venant-Kirchhoff material (Jeffrey
+   * eqs 16-18 and 24):
+   *
+   *   Psi = mu E : E + lambda/2 (tr E)^2 + (Delta lambda / 2 + Delta mu)
+   *         (a . E a)^2,
+   *
+   * with (lambda, mu) the Lame pair across the fibre (from the Materials
+   * subsection) and Delta lambda = lambda^L - lambda, Delta mu = mu^L - mu
+   * from the pair (E^L, nu^L) along the unit fibre direction a (ERRATA item
+   * 1 on the names lambda^L, lambda^T). Shearing and cross-stretching terms
+   * are neglected, as in the report.
+   */
+  template <int dim>
+  class TransverselyIsotropic
+    : public EnergyMaterial<dim, TransverselyIsotropic<dim>>
+  {
+  public:
+    TransverselyIsotropic(const ElasticConstants &constants,
+                          const ParameterHandler &prm);
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    template <typename Number>
+    Number
+    energy_in_C(const SmallMatrix<dim, Number> &C,
+                const Tensor<1, dim>           &a) const
+    {
+      const SmallMatrix<dim, Number> E  = green_lagrange_from_C<dim, Number>(C);
+      const Number                   tr = trace<dim, Number>(E);
+      const Number                   Ea = quadratic_form<dim, Number>(E, a);
+      return mu * squared_norm<dim, Number>(E) + 0.5 * lambda * tr * tr +
+             fibre_coefficient * Ea * Ea;
+    }
+
+    template <typename Number>
+    Number
+    energy(const SmallMatrix<dim, Number> &F, const Tensor<1, dim> &a) const
+    {
+      return energy_in_C(right_cauchy_green<dim, Number>(F), a);
+    }
+
+    bool
+    admits_inversion() const override
+    {
+      return true;
+    }
+
+    bool
+    uses_fibres() const override
+    {
+      return true;
+    }
+
+  private:
+    double lambda;
+    double mu;
+    /// Delta lambda / 2 + Delta mu (stress units).
+    double fibre_coefficient;
+  };
+} // namespace tissuefem::materials

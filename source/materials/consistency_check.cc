@@ -1,0 +1,246 @@
+#include <deal.II/base/symmetric_tensor.h>
+#include <deal.II/base/tensor.h>
+
+#include <tissuefem/materials/consistency_check.h>
+
+#include <cmath>
+#include <cstdint>
+#include <iomanip>
+
+namespace tissuefem::materials
+{
+  namespace
+  {
+    /// A portable linear congruential generator, uniform in [-1, 1).
+    class Random
+    {
+    public:
+      double
+      operator()()
+      {
+        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+        return static_cast<double>(state >> 11) / 4503599627370496.0 - 1.0;
+      }
+
+    private:
+      std::uint64_t state = 20261122;
+    };
+
+    template <int dim>
+    Tensor<2, dim>
+    random_tensor(Random &random, const double scale)
+    {
+      Tensor<2, dim> T;
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = 0; j < dim; ++j)
+          T[i][j] = scale * random();
+      return T;
+    }
+
+    /// A random rotation: Q = exp of a random skew matrix, via Cayley's
+    /// transform (I - W)^{-1} (I + W), which is orthogonal with det 1.
+    template <int dim>
+    Tensor<2, dim>
+    random_rotation(Random &random)
+    {
+      const Tensor<2, dim> W0 = random_tensor<dim>(random, 1.);
+      const Tensor<2, dim> W  = W0 - transpose(W0);
+      const Tensor<2, dim> I  = unit_symmetric_tensor<dim>();
+      return invert(I - W) * (I + W);
+    }
+
+    template <int dim>
+    double
+    max_abs(const Tensor<2, dim> &T)
+    {
+      double m = 0;
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = 0; j < dim; ++j)
+          m = std::max(m, std::abs(T[i][j]));
+      return m;
+    }
+  } // namespace
+
+
+  bool
+  ConsistencyReport::passes() const
+  {
+    return zero_stress_at_identity < 1e-10 && stress_vs_energy < 1e-6 &&
+           tangent_vs_stress < 1e-6 && method_spread < 1e-10 &&
+           major_asymmetry < 1e-10 && energy_taylor_slope > 1.9 &&
+           energy_taylor_slope < 2.1 && stress_taylor_slope > 1.9 &&
+           stress_taylor_slope < 2.1 && frame_indifference < 1e-10;
+  }
+
+
+  template <int dim>
+  ConsistencyReport
+  check_consistency(const std::string    &name,
+                    const Interface<dim> &material,
+                    const double          stress_scale)
+  {
+    Random            random;
+    ConsistencyReport report{};
+    report.model            = name;
+    report.dim              = dim;
+    report.inverted_samples = material.admits_inversion();
+
+    Tensor<1, dim> fibre;
+    for (unsigned int d = 0; d < dim; ++d)
+      fibre[d] = d + 1.;
+    fibre /= fibre.norm();
+
+    const Tensor<2, dim> I = unit_symmetric_tensor<dim>();
+    report.zero_stress_at_identity =
+      max_abs(material.stress(I, fibre)) / stress_scale;
+
+    std::vector<TangentMethod> methods = {
+      TangentMethod::automatic_differentiation,
+      TangentMethod::automatic_differentiation_in_F,
+      TangentMethod::dealii_ad_helper};
+    if (material.has_hand_coded_tangent())
+      methods.push_back(TangentMethod::hand_coded);
+
+    report.energy_taylor_slope = report.stress_taylor_slope = 10;
+    for (unsigned int sample = 0; sample < 20; ++sample)
+      {
+        Tensor<2, dim> F = I + random_tensor<dim>(random, 0.3);
+        if (material.admits_inversion() && sample % 2 == 1)
+          F[0] *= -1.;
+        Tensor<2, dim> P;
+        Tensor<4, dim> A;
+        material.stress_and_tangent(
+          F, fibre, P, A, TangentMethod::automatic_differentiation);
+        const double scale = std::max(max_abs(P), stress_scale);
+
+        // Central differences with step 1e-6 in every entry of F.
+        const double h = 1e-6;
+        for (unsigned int k = 0; k < dim; ++k)
+          for (unsigned int l = 0; l < dim; ++l)
+            {
+              Tensor<2, dim> Fp = F, Fm = F;
+              Fp[k][l] += h;
+              Fm[k][l] -= h;
+              const double dpsi = (material.energy_density(Fp, fibre) -
+                                   material.energy_density(Fm, fibre)) /
+                                  (2 * h);
+              report.stress_vs_energy =
+                std::max(report.stress_vs_energy,
+                         std::abs(dpsi - P[k][l]) / scale);
+              const Tensor<2, dim> dP = (material.stress(Fp, fibre) -
+                                         material.stress(Fm, fibre)) /
+                                        (2 * h);
+              for (unsigned int i = 0; i < dim; ++i)
+                for (unsigned int j = 0; j < dim; ++j)
+                  report.tangent_vs_stress =
+                    std::max(report.tangent_vs_stress,
+                             std::abs(dP[i][j] - A[i][j][k][l]) / scale);
+            }
+
+        for (const auto method : methods)
+          {
+            Tensor<2, dim> P2;
+            Tensor<4, dim> A2;
+            material.stress_and_tangent(F, fibre, P2, A2, method);
+            report.method_spread =
+              std::max(report.method_spread, max_abs(P2 - P) / scale);
+            for (unsigned int i = 0; i < dim; ++i)
+              for (unsigned int j = 0; j < dim; ++j)
+                for (unsigned int k = 0; k < dim; ++k)
+                  for (unsigned int l = 0; l < dim; ++l)
+                    {
+                      report.method_spread =
+                        std::max(report.method_spread,
+                                 std::abs(A2[i][j][k][l] - A[i][j][k][l]) /
+                                   scale);
+                      report.major_asymmetry =
+                        std::max(report.major_asymmetry,
+                                 std::abs(A[i][j][k][l] - A[k][l][i][j]) /
+                                   scale);
+                    }
+          }
+
+        // Taylor remainders at h and h/2 along a random direction.
+        const Tensor<2, dim> dF = random_tensor<dim>(random, 1.);
+        const double psi = material.energy_density(F, fibre);
+        auto remainders = [&](const double t, double &r_energy, double &r_stress) {
+          const Tensor<2, dim> Ft = F + t * dF;
+          r_energy = std::abs(material.energy_density(Ft, fibre) - psi -
+                              t * scalar_product(P, dF));
+          r_stress = max_abs(material.stress(Ft, fibre) - P -
+                             t * double_contract<2, 0, 3, 1>(A, dF));
+        };
+        double e1, s1, e2, s2;
+        remainders(1e-3, e1, s1);
+        remainders(5e-4, e2, s2);
+        // A remainder at round-off level (a quadratic energy's stress is
+        // linear) has no meaningful slope; count it as exact.
+        const double e_slope = e1 < 1e-13 * scale ? 2. : std::log2(e1 / e2);
+        const double s_slope = s1 < 1e-13 * scale ? 2. : std::log2(s1 / s2);
+        report.energy_taylor_slope = std::min(report.energy_taylor_slope, e_slope);
+        report.stress_taylor_slope = std::min(report.stress_taylor_slope, s_slope);
+
+        if (material.frame_indifferent())
+          {
+            const Tensor<2, dim> Q = random_rotation<dim>(random);
+            const double d_energy =
+              std::abs(material.energy_density(Q * F, fibre) - psi) /
+              std::max(std::abs(psi), stress_scale);
+            const double d_stress =
+              max_abs(material.stress(Q * F, fibre) - Q * P) / scale;
+            report.frame_indifference =
+              std::max({report.frame_indifference, d_energy, d_stress});
+          }
+        else
+          report.frame_indifference = -1;
+      }
+    return report;
+  }
+
+
+  void
+  print_consistency_table(std::ostream                         &out,
+                          const std::vector<ConsistencyReport> &reports)
+  {
+    out << std::left << std::setw(52) << "model" << std::right << std::setw(4)
+        << "dim" << std::setw(10) << "P(I)" << std::setw(10) << "P-FD"
+        << std::setw(10) << "A-FD" << std::setw(10) << "methods"
+        << std::setw(10) << "A-A^T" << std::setw(8) << "slopeW"
+        << std::setw(8) << "slopeP" << std::setw(10) << "QF" << std::setw(6)
+        << "J<0" << std::setw(6) << "ok" << "\n";
+    for (const auto &r : reports)
+      {
+        out << std::left << std::setw(52) << r.model << std::right
+            << std::setw(4) << r.dim << std::scientific << std::setprecision(1)
+            << std::setw(10) << r.zero_stress_at_identity << std::setw(10)
+            << r.stress_vs_energy << std::setw(10) << r.tangent_vs_stress
+            << std::setw(10) << r.method_spread << std::setw(10)
+            << r.major_asymmetry << std::fixed << std::setprecision(2)
+            << std::setw(8) << r.energy_taylor_slope << std::setw(8)
+            << r.stress_taylor_slope;
+        if (r.frame_indifference < 0)
+          out << std::setw(10) << "n/a";
+        else
+          out << std::scientific << std::setprecision(1) << std::setw(10)
+              << r.frame_indifference;
+        out << std::setw(6) << (r.inverted_samples ? "yes" : "no")
+            << std::setw(6) << (r.passes() ? "yes" : "NO") << "\n";
+      }
+    out << std::defaultfloat
+        << "Columns: relative errors of P(I); of P against central differences "
+           "of Psi; of A = dP/dF against central differences of P; largest "
+           "difference between tangent methods; of A against its major "
+           "transpose; Taylor slopes of the energy and stress remainders "
+           "(2 when the derivatives are right); of Psi(QF) and P(QF) against "
+           "Psi(F) and Q P(F) for random rotations Q (n/a: not frame "
+           "indifferent by design); whether inverted F (det F < 0) were "
+           "sampled.\n";
+  }
+
+  template ConsistencyReport
+  check_consistency<1>(const std::string &, const Interface<1> &, double);
+  template ConsistencyReport
+  check_consistency<2>(const std::string &, const Interface<2> &, double);
+  template ConsistencyReport
+  check_consistency<3>(const std::string &, const Interface<3> &, double);
+} // namespace tissuefem::materials

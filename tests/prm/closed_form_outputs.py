@@ -1,0 +1,113 @@
+#!/usr/bin/env python3
+"""Writes the expected outputs of the homogeneous-deformation tests from
+closed-form solutions, independently of tissuefem. Run from tests/prm/.
+
+Each test deforms a unit cube (2 x 2 x 2 Q1 cells, 81 unknowns)
+homogeneously, in two quasistatic steps to t = 1; the summary holds the
+reaction force on one face at t = 0 and t = 1 and the final elastic energy
+(Psi(F) times the unit volume)."""
+import math
+
+
+def lame(E, nu):
+    return E * nu / ((1 + nu) * (1 - 2 * nu)), E / (2 * (1 + nu))
+
+
+def fmt(x):
+    # tissuefem prints with 8 significant digits (std::setprecision(8)).
+    return "%.8g" % x
+
+
+def write(name, boundary, reaction, energy):
+    lines = ["cells 8 unknowns 81",
+             "t = 0 boundary %d reaction = 0 0 0" % boundary,
+             "t = 1 boundary %d reaction = %s" % (boundary, " ".join(fmt(r) for r in reaction)),
+             "final elastic energy " + fmt(energy)]
+    with open(name + ".output", "w") as f:
+        f.write("\n".join(lines) + "\n")
+
+
+def stvk_energy(lam, mu, E, kappa=0.0, a_index=None):
+    tr = sum(E[i][i] for i in range(3))
+    W = mu * sum(E[i][j] ** 2 for i in range(3) for j in range(3)) + 0.5 * lam * tr ** 2
+    if a_index is not None:
+        W += kappa * E[a_index][a_index] ** 2
+    return W
+
+
+def diag(*d):
+    return [[d[i] if i == j else 0.0 for j in range(3)] for i in range(3)]
+
+
+# St Venant-Kirchhoff, uniaxial stretch 1.2 with free lateral faces:
+# S = lambda tr(E) I + 2 mu E, E = diag(a, b, b), S_yy = 0 gives
+# b = -lambda a / (2 (lambda + mu)); P_xx = 1.2 S_xx.
+lam, mu = lame(1000, 0.3)
+stretch = 1.2
+a = (stretch ** 2 - 1) / 2
+b = -lam * a / (2 * (lam + mu))
+S_xx = lam * (a + 2 * b) + 2 * mu * a
+write("uniaxial_stretch_stvk", 1, [stretch * S_xx, 0, 0],
+      stvk_energy(lam, mu, diag(a, b, b)))
+
+# neo-Hookean (log J), uniaxial stretch 1.2: F = diag(1.2, s, s),
+# P = mu F + (lambda ln J - mu) F^{-T}; solve P_yy = mu s + (lambda ln J -
+# mu)/s = 0 for s by bisection, then P_xx = 1.2 mu + (lambda ln J - mu)/1.2.
+def p_yy(s):
+    J = stretch * s * s
+    return mu * s + (lam * math.log(J) - mu) / s
+lo, hi = 0.5, 1.0
+for _ in range(200):
+    mid = 0.5 * (lo + hi)
+    if p_yy(lo) * p_yy(mid) <= 0:
+        hi = mid
+    else:
+        lo = mid
+s = 0.5 * (lo + hi)
+J = stretch * s * s
+P_xx = mu * stretch + (lam * math.log(J) - mu) / stretch
+I1 = stretch ** 2 + 2 * s * s
+W = 0.5 * mu * (I1 - 3) - mu * math.log(J) + 0.5 * lam * math.log(J) ** 2
+write("uniaxial_stretch_neo_hookean", 1, [P_xx, 0, 0], W)
+
+# Simple shear F = I + g e_x (x) e_y, g = 0.3; reaction on y = 1 is P e_y.
+g = 0.3
+# St Venant-Kirchhoff: E = [[0, g/2, 0], [g/2, g^2/2, 0], [0, 0, 0]],
+# S = lambda tr(E) I + 2 mu E, P = F S.
+E = [[0, g / 2, 0], [g / 2, g * g / 2, 0], [0, 0, 0]]
+trE = g * g / 2
+S = [[lam * trE * (i == j) + 2 * mu * E[i][j] for j in range(3)] for i in range(3)]
+F = [[1, g, 0], [0, 1, 0], [0, 0, 1]]
+P = [[sum(F[i][k] * S[k][j] for k in range(3)) for j in range(3)] for i in range(3)]
+write("simple_shear_stvk", 3, [P[0][1], P[1][1], P[2][1]], stvk_energy(lam, mu, E))
+# neo-Hookean: J = 1, so P = mu (F - F^{-T}) and P e_y = (mu g, 0, 0);
+# Psi = mu/2 (tr F^T F - 3) = mu g^2 / 2.
+write("simple_shear_neo_hookean", 3, [mu * g, 0, 0], 0.5 * mu * g * g)
+
+# Transversely isotropic St Venant-Kirchhoff (Jeffrey eq 24), the muscle:
+# (lambda, mu) from E = 20 kPa, nu = 0.4 across; kappa = Delta lambda / 2 +
+# Delta mu from E^L = 150 kPa, nu^L = 0.4 along. S = lambda tr(E) I + 2 mu E
+# + 2 kappa (a.E a) a (x) a. Stretch 1.01 in x; lateral E entries from
+# S_yy = S_zz = 0 (linear in them), then P_xx = 1.01 S_xx.
+lam, mu = lame(20000, 0.4)
+lamL, muL = lame(150000, 0.4)
+kappa = 0.5 * (lamL - lam) + (muL - mu)
+stretch = 1.01
+a = (stretch ** 2 - 1) / 2
+# Fibre along x: S_yy = S_zz = 0 gives b = -lambda a / (2 (lambda + mu)).
+b = -lam * a / (2 * (lam + mu))
+S_xx = lam * (a + 2 * b) + 2 * mu * a + 2 * kappa * a
+write("muscle_stretch_along", 1, [stretch * S_xx, 0, 0],
+      stvk_energy(lam, mu, diag(a, b, b), kappa, 0))
+along = stretch * S_xx
+# Fibre along y: S_yy = lambda (a + by + bz) + 2 (mu + kappa) by = 0,
+#                S_zz = lambda (a + by + bz) + 2 mu bz = 0.
+m11, m12, r1 = lam + 2 * (mu + kappa), lam, -lam * a
+m21, m22, r2 = lam, lam + 2 * mu, -lam * a
+det = m11 * m22 - m12 * m21
+by = (r1 * m22 - m12 * r2) / det
+bz = (m11 * r2 - m21 * r1) / det
+S_xx = lam * (a + by + bz) + 2 * mu * a
+write("muscle_stretch_across", 1, [stretch * S_xx, 0, 0],
+      stvk_energy(lam, mu, diag(a, by, bz), kappa, 1))
+print("stiffness ratio along/across the fibre at 1 % stretch:", along / (stretch * S_xx))
