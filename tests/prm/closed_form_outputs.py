@@ -18,8 +18,8 @@ def fmt(x):
     return "%.8g" % x
 
 
-def write(name, boundary, reaction, energy):
-    lines = ["cells 8 unknowns 81",
+def write(name, boundary, reaction, energy, cells=8):
+    lines = ["cells %d unknowns 81" % cells,
              "t = 0 boundary %d reaction = 0 0 0" % boundary,
              "t = 1 boundary %d reaction = %s" % (boundary, " ".join(fmt(r) for r in reaction)),
              "final elastic energy " + fmt(energy)]
@@ -99,6 +99,9 @@ b = -lam * a / (2 * (lam + mu))
 S_xx = lam * (a + 2 * b) + 2 * mu * a + 2 * kappa * a
 write("muscle_stretch_along", 1, [stretch * S_xx, 0, 0],
       stvk_energy(lam, mu, diag(a, b, b), kappa, 0))
+# The same on 40 tetrahedra with the edge-length formulation.
+write("muscle_stretch_along_edge_length", 1, [stretch * S_xx, 0, 0],
+      stvk_energy(lam, mu, diag(a, b, b), kappa, 0), cells=40)
 along = stretch * S_xx
 # Fibre along y: S_yy = lambda (a + by + bz) + 2 (mu + kappa) by = 0,
 #                S_zz = lambda (a + by + bz) + 2 mu bz = 0.
