@@ -50,6 +50,14 @@ namespace tissuefem::output
                       "sum of the unconstrained nodal residual over the "
                       "boundary's nodes. A tool holding the boundary feels "
                       "the opposite force.");
+    prm.declare_entry("Report rest shape",
+                      "false",
+                      Patterns::Bool(),
+                      "At the end of the run, report (on screen and in the "
+                      "summary file) the distance from the rest shape up to "
+                      "a rigid motion (largest vertex distance after the best "
+                      "rigid fit, length units) and the smallest J = det F: "
+                      "the figures of an inversion-recovery test.");
     prm.declare_entry("Summary interval",
                       "1",
                       Patterns::Integer(1),
@@ -67,6 +75,7 @@ namespace tissuefem::output
     probe_points     = prm.get("Probe points");
     summary_file     = prm.get("Summary file");
     summary_interval = prm.get_integer("Summary interval");
+    report_rest_shape = prm.get_bool("Report rest shape");
     reaction_boundary_ids.clear();
     for (const auto &id :
          Utilities::split_string_list(prm.get("Reaction boundary ids")))

@@ -177,6 +177,18 @@ namespace tissuefem::problems
         writer->write_step(statistics, u, v, reactions);
       }
 
+    if (output_parameters.report_rest_shape)
+      {
+        std::ostringstream rest;
+        rest << std::setprecision(4) << "distance from rest shape "
+             << system->distance_from_rest_shape(u) << " min J "
+             << system->min_jacobian(u);
+        writer->summary_line(rest.str());
+        std::cout << rest.str()
+                  << " (largest vertex distance after the best rigid fit, "
+                     "length units; smallest det F)"
+                  << std::endl;
+      }
     std::ostringstream energy;
     energy << "final elastic energy " << std::setprecision(8)
            << system->elastic_energy(u);

@@ -2,15 +2,49 @@
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/lapack_full_matrix.h>
 #include <deal.II/numerics/vector_tools.h>
 
 #include <tissuefem/solid/solid_system.h>
 
 #include <cmath>
+#include <limits>
+#include <map>
 #include <sstream>
 
 namespace tissuefem::solid
 {
+  namespace
+  {
+    /// Calls @p f(cell, F at q, JxW) for every quadrature point.
+    template <int dim, typename Callback>
+    void
+    for_each_deformation_gradient(const Discretization<dim> &discretization,
+                                  const Vector<double>      &u,
+                                  const Callback            &f)
+    {
+      FEValues<dim> fe_values(*discretization.mapping,
+                              *discretization.fe,
+                              discretization.cell_quadrature,
+                              update_gradients | update_JxW_values);
+      const FEValuesExtractors::Vector displacement(0);
+      std::vector<Tensor<2, dim>> grad_u(
+        discretization.cell_quadrature.size());
+      for (const auto &cell :
+           discretization.dof_handler.active_cell_iterators())
+        {
+          fe_values.reinit(cell);
+          fe_values[displacement].get_function_gradients(u, grad_u);
+          for (const unsigned int q : fe_values.quadrature_point_indices())
+            f(cell,
+              q,
+              unit_symmetric_tensor<dim>() + grad_u[q],
+              fe_values.JxW(q));
+        }
+    }
+  } // namespace
+
+
   template <int dim>
   SolidSystem<dim>::SolidSystem(
     const Discretization<dim>         &discretization,
@@ -96,16 +130,36 @@ namespace tissuefem::solid
   template <int dim>
   void
   SolidSystem<dim>::check_not_inverted(
-    const double                                          J,
-    const typename DoFHandler<dim>::active_cell_iterator &cell,
-    const materials::Interface<dim>                      &material) const
+    const double                     J,
+    const materials::Interface<dim> &material,
+    const Vector<double>            &u) const
   {
     if (J > 0 || material.admits_inversion())
       return;
+    // Name every inverted cell (up to a few), not just the first found.
+    std::vector<std::pair<unsigned int, Point<dim>>> inverted;
+    double                                           smallest = 0;
+    for_each_deformation_gradient(
+      discretization,
+      u,
+      [&](const auto &cell, unsigned int, const Tensor<2, dim> &F, double) {
+        const double det = determinant(F);
+        if (det <= 0 &&
+            !materials.material(cell->material_id()).admits_inversion() &&
+            (inverted.empty() ||
+             inverted.back().first != cell->active_cell_index()))
+          inverted.emplace_back(cell->active_cell_index(), cell->center());
+        smallest = std::min(smallest, det);
+      });
     std::ostringstream message;
-    message << "element inverted (det F = " << J << ") in cell "
-            << cell->active_cell_index() << " centred at (" << cell->center()
-            << "); the material model is undefined for det F <= 0 (use "
+    message << inverted.size() << " element(s) inverted (smallest det F = "
+            << smallest << "): cell";
+    for (unsigned int i = 0; i < std::min<std::size_t>(inverted.size(), 4); ++i)
+      message << (i ? ", " : " ") << inverted[i].first << " at ("
+              << inverted[i].second << ")";
+    if (inverted.size() > 4)
+      message << ", ...";
+    message << "; the material model is undefined for det F <= 0 (use "
             << "'robust neo-Hookean' for scenes that invert elements)";
     throw InvertedElementError(message.str());
   }
@@ -228,7 +282,7 @@ namespace tissuefem::solid
                 F[component[i]] += u_cell[i] * grads[i];
                 inertia[component[i]] += inertia_cell[i] * values[i];
               }
-            check_not_inverted(determinant(F), cell, material);
+            check_not_inverted(determinant(F), material, u);
             const Tensor<1, dim> &a = fibre(cell->active_cell_index(), q);
             if (edge_length)
               {
@@ -405,35 +459,6 @@ namespace tissuefem::solid
   }
 
 
-  namespace
-  {
-    /// Calls @p f(cell, F at q, JxW) for every quadrature point.
-    template <int dim, typename Callback>
-    void
-    for_each_deformation_gradient(const Discretization<dim> &discretization,
-                                  const Vector<double>      &u,
-                                  const Callback            &f)
-    {
-      FEValues<dim> fe_values(*discretization.mapping,
-                              *discretization.fe,
-                              discretization.cell_quadrature,
-                              update_gradients | update_JxW_values);
-      const FEValuesExtractors::Vector displacement(0);
-      std::vector<Tensor<2, dim>> grad_u(
-        discretization.cell_quadrature.size());
-      for (const auto &cell :
-           discretization.dof_handler.active_cell_iterators())
-        {
-          fe_values.reinit(cell);
-          fe_values[displacement].get_function_gradients(u, grad_u);
-          for (const unsigned int q : fe_values.quadrature_point_indices())
-            f(cell,
-              q,
-              unit_symmetric_tensor<dim>() + grad_u[q],
-              fe_values.JxW(q));
-        }
-    }
-  } // namespace
 
 
   template <int dim>
@@ -504,6 +529,69 @@ namespace tissuefem::solid
           result[d][c] = mean[d];
       }
     return result;
+  }
+
+  template <int dim>
+  double
+  SolidSystem<dim>::min_jacobian(const Vector<double> &u) const
+  {
+    double smallest = std::numeric_limits<double>::max();
+    for_each_deformation_gradient(
+      discretization,
+      u,
+      [&](const auto &, unsigned int, const Tensor<2, dim> &F, double) {
+        smallest = std::min(smallest, determinant(F));
+      });
+    return smallest;
+  }
+
+
+  template <int dim>
+  double
+  SolidSystem<dim>::distance_from_rest_shape(const Vector<double> &u) const
+  {
+    // Reference and deformed positions of the vertices.
+    const auto &dof_handler = discretization.dof_handler;
+    std::map<unsigned int, std::pair<Point<dim>, Point<dim>>> vertices;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      for (const unsigned int v : cell->vertex_indices())
+        {
+          Point<dim> x = cell->vertex(v);
+          for (unsigned int c = 0; c < dim; ++c)
+            x[c] += u[cell->vertex_dof_index(v, c)];
+          vertices[cell->vertex_index(v)] = {cell->vertex(v), x};
+        }
+    Point<dim> X_mean, x_mean;
+    for (const auto &[index, pair] : vertices)
+      {
+        X_mean += pair.first / double(vertices.size());
+        x_mean += pair.second / double(vertices.size());
+      }
+    // R maximizes sum (x - x_mean) . R (X - X_mean): R = U diag(1, .., det)
+    // V^T from the SVD M = U S V^T of M = sum (x - x_mean) (x) (X - X_mean).
+    LAPACKFullMatrix<double> M(dim, dim);
+    for (const auto &[index, pair] : vertices)
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = 0; j < dim; ++j)
+          M(i, j) += (pair.second[i] - x_mean[i]) * (pair.first[j] - X_mean[j]);
+    M.compute_svd();
+    const auto    &U = M.get_svd_u();
+    const auto    &V = M.get_svd_vt();
+    Tensor<2, dim> Ut, Vt;
+    for (unsigned int i = 0; i < dim; ++i)
+      for (unsigned int j = 0; j < dim; ++j)
+        {
+          Ut[i][j] = U(i, j);
+          Vt[i][j] = V(i, j);
+        }
+    Tensor<2, dim> D = unit_symmetric_tensor<dim>();
+    D[dim - 1][dim - 1] = determinant(Ut * Vt) < 0 ? -1. : 1.;
+    const Tensor<2, dim> R = Ut * D * Vt;
+    double distance = 0;
+    for (const auto &[index, pair] : vertices)
+      distance = std::max(distance,
+                          (x_mean + R * (pair.first - X_mean) - pair.second).norm());
+    return distance;
   }
 
   template class SolidSystem<1>;

@@ -27,6 +27,7 @@ namespace tissuefem::output
     std::string  summary_file;
     unsigned int summary_interval;
     std::vector<types::boundary_id> reaction_boundary_ids;
+    bool                            report_rest_shape;
   };
 
   /// What one time step reports to statistics.csv and the screen.

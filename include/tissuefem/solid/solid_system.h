@@ -101,6 +101,20 @@ namespace tissuefem::solid
     double
     elastic_energy(const Vector<double> &u) const;
 
+    /**
+     * How far the deformed body is from its rest shape up to a rigid
+     * motion: the largest distance, over the mesh vertices, between
+     * X + u(X) and the best-fitting rotation and translation of X (the
+     * rotation from the SVD of the covariance, with det R = +1 so mirror
+     * images count as far). Length units.
+     */
+    double
+    distance_from_rest_shape(const Vector<double> &u) const;
+
+    /// The smallest J = det F over all quadrature points.
+    double
+    min_jacobian(const Vector<double> &u) const;
+
     /// Whether any material is anisotropic (and fibre_directions() is
     /// meaningful).
     bool
@@ -162,11 +176,11 @@ namespace tissuefem::solid
                   Vector<double>                  &residual,
                   const bool                       with_tangent);
 
-    /// Throws InvertedElementError if J <= 0 for a material that cannot
-    /// represent inversion.
+    /// Throws InvertedElementError, naming the inverted cells of @p u, if
+    /// J <= 0 for a material that cannot represent inversion.
     void
     check_not_inverted(const double                     J,
-                       const typename DoFHandler<dim>::active_cell_iterator &cell,
-                       const materials::Interface<dim> &material) const;
+                       const materials::Interface<dim> &material,
+                       const Vector<double>            &u) const;
   };
 } // namespace tissuefem::solid
