@@ -3,6 +3,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <iostream>
 
 namespace tissuefem::solvers
 {
@@ -35,6 +36,11 @@ namespace tissuefem::solvers
                       Patterns::Integer(0, 50),
                       "Halvings of the Newton update tried while the residual "
                       "norm does not decrease; 0 takes full steps.");
+    prm.declare_entry("Verbose",
+                      "false",
+                      Patterns::Bool(),
+                      "Print every iteration: residual norm (force units), "
+                      "update norm (length units) and line-search step.");
     prm.leave_subsection();
   }
 
@@ -48,6 +54,7 @@ namespace tissuefem::solvers
     relative_residual_tolerance = prm.get_double("Relative residual tolerance");
     update_tolerance            = prm.get_double("Update tolerance");
     max_line_search_steps       = prm.get_integer("Line search steps");
+    verbose                     = prm.get_bool("Verbose");
     prm.leave_subsection();
   }
 
@@ -169,6 +176,10 @@ namespace tissuefem::solvers
         residual = trial_residual;
         norm     = residual.l2_norm();
         result.residual_norms.push_back(norm);
+        if (parameters.verbose)
+          std::cout << "    Newton " << result.iterations << ": |R| = " << norm
+                    << ", |du| = " << update.l2_norm() << ", step " << alpha
+                    << std::endl;
 
         if (alpha == 1 && update.l2_norm() <=
                             parameters.update_tolerance * (1 + u.l2_norm()))
