@@ -21,8 +21,9 @@ namespace tissuefem_tests
   {
   public:
     explicit Random(const std::uint64_t seed)
-      : state(seed)
-    {}
+        : state(seed)
+    {
+    }
 
     /// Uniform in [-1, 1).
     double
@@ -46,7 +47,9 @@ namespace tissuefem_tests
   /// Prints "name: ok" if @p condition holds, else a failure line with
   /// @p detail, and counts the failure.
   inline void
-  check(const bool condition, const std::string &name, const std::string &detail = "")
+  check(const bool         condition,
+        const std::string &name,
+        const std::string &detail = "")
   {
     if (condition)
       std::cout << name << ": ok" << std::endl;
@@ -59,7 +62,9 @@ namespace tissuefem_tests
 
   /// Checks |value| <= tolerance, printing the value on failure only.
   inline void
-  check_small(const double value, const double tolerance, const std::string &name)
+  check_small(const double       value,
+              const double       tolerance,
+              const std::string &name)
   {
     std::ostringstream bound;
     bound << std::scientific << std::setprecision(0) << tolerance;

@@ -18,7 +18,7 @@
 #include <iostream>
 
 #ifndef TISSUEFEM_VERSION
-#  define TISSUEFEM_VERSION "unknown"
+#define TISSUEFEM_VERSION "unknown"
 #endif
 
 namespace tissuefem
@@ -35,8 +35,8 @@ namespace tissuefem
       "elasticity",
       Patterns::Selection(
         problems::ProblemRegistry::instance().selection_pattern()),
-      "What to compute. " +
-        problems::ProblemRegistry::instance().documentation());
+      "What to compute. "
+        + problems::ProblemRegistry::instance().documentation());
     geometry::GeometryParameters::declare_parameters(prm);
     solid::FiniteElementParameters::declare_parameters(prm);
     materials::MaterialParameters::declare_parameters(prm);
@@ -62,19 +62,20 @@ namespace tissuefem
       }
     catch (const ExceptionBase &e)
       {
-        throw InputError("Parameter file '" + file +
-                         "': " + one_line_message(e));
+        throw InputError("Parameter file '" + file
+                         + "': " + one_line_message(e));
       }
 
     for (const std::string &assignment : overrides)
       {
         const auto equals = assignment.find('=');
         if (equals == std::string::npos)
-          throw InputError("--set '" + assignment +
-                           "': expected 'Subsection/Name=value'");
-        const std::vector<std::string> path =
-          split_and_trim(assignment.substr(0, equals), '/');
-        const std::string value = Utilities::trim(assignment.substr(equals + 1));
+          throw InputError("--set '" + assignment
+                           + "': expected 'Subsection/Name=value'");
+        const std::vector<std::string> path
+          = split_and_trim(assignment.substr(0, equals), '/');
+        const std::string value
+          = Utilities::trim(assignment.substr(equals + 1));
         try
           {
             for (unsigned int i = 0; i + 1 < path.size(); ++i)
@@ -85,8 +86,8 @@ namespace tissuefem
           }
         catch (const ExceptionBase &e)
           {
-            throw InputError("--set '" + assignment +
-                             "': " + one_line_message(e));
+            throw InputError("--set '" + assignment
+                             + "': " + one_line_message(e));
           }
       }
   }
@@ -104,8 +105,9 @@ namespace tissuefem
       std::vector<materials::ConsistencyReport> reports;
       for (unsigned int i = 0; i < parameters.model_names.size(); ++i)
         {
-          const auto model = materials::MaterialRegistry<dim>::instance().create(
-            parameters.model_names[i], parameters.constants[i], prm);
+          const auto model
+            = materials::MaterialRegistry<dim>::instance().create(
+              parameters.model_names[i], parameters.constants[i], prm);
           std::string label = parameters.model_names[i];
           if (!parameters.material_ids.empty())
             label += " (id " + std::to_string(parameters.material_ids[i]) + ")";
@@ -123,22 +125,23 @@ namespace tissuefem
     void
     print_usage(std::ostream &out)
     {
-      out << "Usage:\n"
-             "  tissuefem FILE.prm [--set 'Subsection/Name=value' ...]\n"
-             "      run the scene FILE.prm describes; each --set overrides one\n"
-             "      parameter after the file is read.\n"
-             "  tissuefem --validate FILE.prm [--set ...]\n"
-             "      check the file (parameters, mesh, expressions, probes)\n"
-             "      without computing or writing anything.\n"
-             "  tissuefem --check-material FILE.prm [--set ...]\n"
-             "      check each material the file uses against its own energy\n"
-             "      (finite differences, Taylor slopes, tangent methods,\n"
-             "      symmetry, frame indifference) and print a table.\n"
-             "  tissuefem --print-parameters\n"
-             "      list every parameter with its default and documentation.\n"
-             "  tissuefem --help | --version\n"
-             "Exit status: 0 on success, 2 for bad input, 3 when the solver\n"
-             "fails, 4 for any other error.\n";
+      out
+        << "Usage:\n"
+           "  tissuefem FILE.prm [--set 'Subsection/Name=value' ...]\n"
+           "      run the scene FILE.prm describes; each --set overrides one\n"
+           "      parameter after the file is read.\n"
+           "  tissuefem --validate FILE.prm [--set ...]\n"
+           "      check the file (parameters, mesh, expressions, probes)\n"
+           "      without computing or writing anything.\n"
+           "  tissuefem --check-material FILE.prm [--set ...]\n"
+           "      check each material the file uses against its own energy\n"
+           "      (finite differences, Taylor slopes, tangent methods,\n"
+           "      symmetry, frame indifference) and print a table.\n"
+           "  tissuefem --print-parameters\n"
+           "      list every parameter with its default and documentation.\n"
+           "  tissuefem --help | --version\n"
+           "Exit status: 0 on success, 2 for bad input, 3 when the solver\n"
+           "fails, 4 for any other error.\n";
     }
   } // namespace
 
@@ -149,7 +152,7 @@ namespace tissuefem
     std::vector<std::string> args(argv + 1, argv + argc);
     std::vector<std::string> overrides;
     std::string              file;
-    bool                     validate_only = false;
+    bool                     validate_only  = false;
     bool                     check_material = false;
     try
       {
@@ -190,8 +193,8 @@ namespace tissuefem
             else if (file.empty())
               file = a;
             else
-              throw InputError("more than one parameter file given ('" + file +
-                               "', '" + a + "')");
+              throw InputError("more than one parameter file given ('" + file
+                               + "', '" + a + "')");
           }
         if (file.empty())
           {
@@ -205,16 +208,18 @@ namespace tissuefem
         if (check_material)
           {
             const int  dim = prm.get_integer("Dimension");
-            const bool ok  = dim == 1 ? check_materials<1>(prm) :
-                             dim == 2 ? check_materials<2>(prm) :
-                                        check_materials<3>(prm);
+            const bool ok  = dim == 1   ? check_materials<1>(prm)
+                             : dim == 2 ? check_materials<2>(prm)
+                                        : check_materials<3>(prm);
             return ok ? 0 : 3;
           }
         problems::RunContext context;
-        context.parameter_directory =
-          std::filesystem::path(file).parent_path().string();
-        auto problem = problems::ProblemRegistry::instance().create(
-          prm.get("Problem"), prm, context);
+        context.parameter_directory
+          = std::filesystem::path(file).parent_path().string();
+        auto problem
+          = problems::ProblemRegistry::instance().create(prm.get("Problem"),
+                                                         prm,
+                                                         context);
         if (validate_only)
           {
             problem->setup();

@@ -1,5 +1,5 @@
-#include <deal.II/lac/vector.h>
 #include <deal.II/base/utilities.h>
+#include <deal.II/lac/vector.h>
 
 #include <tissuefem/base/input_error.h>
 #include <tissuefem/base/parameter_tools.h>
@@ -57,6 +57,45 @@ namespace tissuefem
   }
 
 
+  types::boundary_id
+  parse_boundary_id(const std::string &text, const std::string &parameter)
+  {
+    int id = -1;
+    try
+      {
+        std::size_t used = 0;
+        id               = std::stoi(text, &used);
+        if (used != text.size())
+          id = -1;
+      }
+    catch (...)
+      {
+      }
+    require(id >= 0 && id < 255,
+            parameter,
+            "'" + text + "' is not a boundary id 0..254");
+    return id;
+  }
+
+
+  std::vector<std::pair<types::boundary_id, std::string>>
+  parse_id_entries(const std::string &text, const std::string &parameter)
+  {
+    std::vector<std::pair<types::boundary_id, std::string>> result;
+    for (const auto &entry : split_entries(text))
+      {
+        const auto colon = entry.find(':');
+        require(colon != std::string::npos,
+                parameter,
+                "entry '" + entry + "' does not start with 'id:'");
+        result.emplace_back(
+          parse_boundary_id(Utilities::trim(entry.substr(0, colon)), parameter),
+          Utilities::trim(entry.substr(colon + 1)));
+      }
+    return result;
+  }
+
+
   std::string
   expression_variables(const unsigned int dim)
   {
@@ -79,9 +118,9 @@ namespace tissuefem
       pieces.resize(n_components, pieces[0]);
     require(pieces.size() == n_components,
             parameter,
-            "expected " + std::to_string(n_components) +
-              " expressions separated by ';', got " +
-              std::to_string(pieces.size()) + " in '" + expressions + "'");
+            "expected " + std::to_string(n_components)
+              + " expressions separated by ';', got "
+              + std::to_string(pieces.size()) + " in '" + expressions + "'");
     for (const auto &piece : pieces)
       require(!piece.empty(),
               parameter,
@@ -109,9 +148,9 @@ namespace tissuefem
     catch (const ExceptionBase &e)
       {
         std::cerr.rdbuf(cerr_buffer);
-        throw InputError("Parameter '" + parameter +
-                         "': cannot parse expression '" + expressions +
-                         "': " + one_line_message(e));
+        throw InputError("Parameter '" + parameter
+                         + "': cannot parse expression '" + expressions
+                         + "': " + one_line_message(e));
       }
     return function;
   }
@@ -124,8 +163,8 @@ namespace tissuefem
     const std::vector<std::string> pieces = split_and_trim(text, ',');
     require(pieces.size() == dim,
             parameter,
-            "expected a point with " + std::to_string(dim) +
-              " coordinates separated by ',', got '" + text + "'");
+            "expected a point with " + std::to_string(dim)
+              + " coordinates separated by ',', got '" + text + "'");
     Point<dim> p;
     for (unsigned int d = 0; d < dim; ++d)
       {
@@ -186,17 +225,17 @@ namespace tissuefem
     std::ostringstream info;
     exception.print_info(info);
     std::string message = squeeze_whitespace(info.str());
-    return message.empty() ? squeeze_whitespace(exception.get_exc_name()) :
-                             message;
+    return message.empty() ? squeeze_whitespace(exception.get_exc_name())
+                           : message;
   }
 
 
-#define TISSUEFEM_INSTANTIATE(dim)                                           \
-  template std::unique_ptr<FunctionParser<dim>> make_function<dim>(        \
-    const std::string &, const unsigned int, const std::string &);         \
-  template Point<dim> parse_point<dim>(const std::string &,                \
-                                       const std::string &);               \
-  template std::vector<Point<dim>> parse_points<dim>(const std::string &,  \
+#define TISSUEFEM_INSTANTIATE(dim)                                        \
+  template std::unique_ptr<FunctionParser<dim>> make_function<dim>(       \
+    const std::string &, const unsigned int, const std::string &);        \
+  template Point<dim>              parse_point<dim>(const std::string &,  \
+                                       const std::string &); \
+  template std::vector<Point<dim>> parse_points<dim>(const std::string &, \
                                                      const std::string &);
   TISSUEFEM_INSTANTIATE(1)
   TISSUEFEM_INSTANTIATE(2)

@@ -67,25 +67,6 @@ namespace tissuefem::boundary
 
   namespace
   {
-    types::boundary_id
-    parse_boundary_id(const std::string &text, const std::string &parameter)
-    {
-      int id = -1;
-      try
-        {
-          std::size_t used = 0;
-          id               = std::stoi(text, &used);
-          if (used != text.size())
-            id = -1;
-        }
-      catch (...)
-        {}
-      require(id >= 0 && id < 255,
-              parameter,
-              "'" + text + "' is not a boundary id 0..254");
-      return id;
-    }
-
     template <int dim>
     ComponentMask
     parse_mask(const std::string &text, const std::string &parameter)
@@ -97,8 +78,8 @@ namespace tissuefem::boundary
           const auto d = names.find(c);
           require(d != std::string::npos,
                   parameter,
-                  "components '" + text + "' must be letters of '" + names +
-                    "'");
+                  "components '" + text + "' must be letters of '" + names
+                    + "'");
           mask[d] = true;
         }
       require(!text.empty(), parameter, "empty component list");
@@ -135,7 +116,7 @@ namespace tissuefem::boundary
                            make_function<dim>(parts[1], dim, neumann_name)});
       }
 
-    body_force = make_function<dim>(parameters.body_force,
+    body_force   = make_function<dim>(parameters.body_force,
                                     dim,
                                     "Boundary conditions/Body force");
     const auto g = split_and_trim(parameters.gravity, ',');
@@ -147,13 +128,14 @@ namespace tissuefem::boundary
       leading += (d ? "," : "") + g[d];
     gravity = parse_point<dim>(leading, "Boundary conditions/Gravity");
 
-    initial_displacement =
-      make_function<dim>(parameters.initial_displacement,
-                         dim,
-                         "Boundary conditions/Initial displacement");
-    initial_velocity = make_function<dim>(parameters.initial_velocity,
-                                          dim,
-                                          "Boundary conditions/Initial velocity");
+    initial_displacement
+      = make_function<dim>(parameters.initial_displacement,
+                           dim,
+                           "Boundary conditions/Initial displacement");
+    initial_velocity
+      = make_function<dim>(parameters.initial_velocity,
+                           dim,
+                           "Boundary conditions/Initial velocity");
   }
 
 
@@ -174,19 +156,19 @@ namespace tissuefem::boundary
   BoundaryConditions<dim>::check_boundary_ids(
     const Triangulation<dim> &triangulation) const
   {
-    const std::vector<types::boundary_id> present =
-      triangulation.get_boundary_ids();
+    const std::vector<types::boundary_id> present
+      = triangulation.get_boundary_ids();
     const std::set<types::boundary_id> ids(present.begin(), present.end());
     for (const auto &d : dirichlet)
       require(ids.count(d.id) > 0,
               "Boundary conditions/Dirichlet",
-              "boundary id " + std::to_string(d.id) +
-                " is on no boundary face of the mesh");
+              "boundary id " + std::to_string(d.id)
+                + " is on no boundary face of the mesh");
     for (const auto &n : neumann)
       require(ids.count(n.id) > 0,
               "Boundary conditions/Neumann",
-              "boundary id " + std::to_string(n.id) +
-                " is on no boundary face of the mesh");
+              "boundary id " + std::to_string(n.id)
+                + " is on no boundary face of the mesh");
   }
 
   template class BoundaryConditions<1>;

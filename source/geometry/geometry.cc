@@ -98,8 +98,8 @@ namespace tissuefem::geometry
       std::vector<std::string> pieces = split_and_trim(text, ',');
       require(pieces.size() >= dim,
               parameter,
-              "needs at least " + std::to_string(dim) + " coordinates, got '" +
-                text + "'");
+              "needs at least " + std::to_string(dim) + " coordinates, got '"
+                + text + "'");
       pieces.resize(dim);
       std::string joined;
       for (const auto &p : pieces)
@@ -113,17 +113,19 @@ namespace tissuefem::geometry
     build_box(const GeometryParameters &parameters,
               Triangulation<dim>       &triangulation)
     {
-      const Point<dim> lower = leading_coordinates<dim>(
-        parameters.lower_corner, "Geometry/Lower corner");
-      const Point<dim> upper = leading_coordinates<dim>(
-        parameters.upper_corner, "Geometry/Upper corner");
+      const Point<dim> lower
+        = leading_coordinates<dim>(parameters.lower_corner,
+                                   "Geometry/Lower corner");
+      const Point<dim> upper
+        = leading_coordinates<dim>(parameters.upper_corner,
+                                   "Geometry/Upper corner");
       for (unsigned int d = 0; d < dim; ++d)
         require(upper[d] > lower[d],
                 "Geometry/Upper corner",
                 "must exceed 'Lower corner' in every coordinate");
 
-      const std::vector<std::string> pieces =
-        Utilities::split_string_list(parameters.subdivisions);
+      const std::vector<std::string> pieces
+        = Utilities::split_string_list(parameters.subdivisions);
       require(pieces.size() >= dim,
               "Geometry/Subdivisions",
               "needs " + std::to_string(dim) + " values");
@@ -178,18 +180,19 @@ namespace tissuefem::geometry
             grid_in.read_abaqus(in);
           else
             throw InputError("Parameter 'Geometry/Mesh file': unknown "
-                             "extension '" + extension + "' of '" + file +
-                             "' (use .msh, .vtk or .inp)");
+                             "extension '"
+                             + extension + "' of '" + file
+                             + "' (use .msh, .vtk or .inp)");
         }
       catch (const ExceptionBase &e)
         {
-          throw InputError("Mesh file '" + file +
-                           "' could not be read: " + one_line_message(e));
+          throw InputError("Mesh file '" + file
+                           + "' could not be read: " + one_line_message(e));
         }
       require(triangulation.n_active_cells() > 0,
               "Geometry/Mesh file",
-              "'" + file + "' holds no cells of dimension " +
-                std::to_string(dim));
+              "'" + file + "' holds no cells of dimension "
+                + std::to_string(dim));
       if (parameters.scale != 1.)
         GridTools::scale(parameters.scale, triangulation);
     }
@@ -201,25 +204,9 @@ namespace tissuefem::geometry
                               Triangulation<dim> &triangulation)
     {
       const std::string parameter = "Geometry/Boundary id predicates";
-      for (const auto &entry : split_entries(text))
+      for (const auto &[id, expression] : parse_id_entries(text, parameter))
         {
-          const auto colon = entry.find(':');
-          require(colon != std::string::npos,
-                  parameter,
-                  "entry '" + entry + "' is not of the form 'id: expression'");
-          int id = -1;
-          try
-            {
-              id = std::stoi(entry.substr(0, colon));
-            }
-          catch (...)
-            {}
-          require(id >= 0 && id < 255,
-                  parameter,
-                  "'" + entry.substr(0, colon) + "' is not a boundary id "
-                  "0..254");
-          const auto predicate =
-            make_function<dim>(entry.substr(colon + 1), 1, parameter);
+          const auto predicate = make_function<dim>(expression, 1, parameter);
           for (const auto &cell : triangulation.active_cell_iterators())
             for (const auto &face : cell->face_iterators())
               if (face->at_boundary() && predicate->value(face->center()) != 0)
@@ -239,8 +226,7 @@ namespace tissuefem::geometry
     else
       build_box(parameters, triangulation);
     triangulation.refine_global(parameters.global_refinements);
-    apply_boundary_predicates(parameters.boundary_id_predicates,
-                              triangulation);
+    apply_boundary_predicates(parameters.boundary_id_predicates, triangulation);
   }
 
 

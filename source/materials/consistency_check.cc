@@ -65,11 +65,11 @@ namespace tissuefem::materials
   bool
   ConsistencyReport::passes() const
   {
-    return zero_stress_at_identity < 1e-10 && stress_vs_energy < 1e-6 &&
-           tangent_vs_stress < 1e-6 && method_spread < 1e-10 &&
-           major_asymmetry < 1e-10 && energy_taylor_slope > 1.9 &&
-           energy_taylor_slope < 2.1 && stress_taylor_slope > 1.9 &&
-           stress_taylor_slope < 2.1 && frame_indifference < 1e-10;
+    return zero_stress_at_identity < 1e-10 && stress_vs_energy < 1e-6
+           && tangent_vs_stress < 1e-6 && method_spread < 1e-10
+           && major_asymmetry < 1e-10 && energy_taylor_slope > 1.9
+           && energy_taylor_slope < 2.1 && stress_taylor_slope > 1.9
+           && stress_taylor_slope < 2.1 && frame_indifference < 1e-10;
   }
 
 
@@ -91,13 +91,13 @@ namespace tissuefem::materials
     fibre /= fibre.norm();
 
     const Tensor<2, dim> I = unit_symmetric_tensor<dim>();
-    report.zero_stress_at_identity =
-      max_abs(material.stress(I, fibre)) / stress_scale;
+    report.zero_stress_at_identity
+      = max_abs(material.stress(I, fibre)) / stress_scale;
 
-    std::vector<TangentMethod> methods = {
-      TangentMethod::automatic_differentiation,
-      TangentMethod::automatic_differentiation_in_F,
-      TangentMethod::dealii_ad_helper};
+    std::vector<TangentMethod> methods
+      = {TangentMethod::automatic_differentiation,
+         TangentMethod::automatic_differentiation_in_F,
+         TangentMethod::dealii_ad_helper};
     if (material.has_hand_coded_tangent())
       methods.push_back(TangentMethod::hand_coded);
 
@@ -121,20 +121,20 @@ namespace tissuefem::materials
               Tensor<2, dim> Fp = F, Fm = F;
               Fp[k][l] += h;
               Fm[k][l] -= h;
-              const double dpsi = (material.energy_density(Fp, fibre) -
-                                   material.energy_density(Fm, fibre)) /
-                                  (2 * h);
-              report.stress_vs_energy =
-                std::max(report.stress_vs_energy,
-                         std::abs(dpsi - P[k][l]) / scale);
-              const Tensor<2, dim> dP = (material.stress(Fp, fibre) -
-                                         material.stress(Fm, fibre)) /
-                                        (2 * h);
+              const double dpsi = (material.energy_density(Fp, fibre)
+                                   - material.energy_density(Fm, fibre))
+                                  / (2 * h);
+              report.stress_vs_energy
+                = std::max(report.stress_vs_energy,
+                           std::abs(dpsi - P[k][l]) / scale);
+              const Tensor<2, dim> dP
+                = (material.stress(Fp, fibre) - material.stress(Fm, fibre))
+                  / (2 * h);
               for (unsigned int i = 0; i < dim; ++i)
                 for (unsigned int j = 0; j < dim; ++j)
-                  report.tangent_vs_stress =
-                    std::max(report.tangent_vs_stress,
-                             std::abs(dP[i][j] - A[i][j][k][l]) / scale);
+                  report.tangent_vs_stress
+                    = std::max(report.tangent_vs_stress,
+                               std::abs(dP[i][j] - A[i][j][k][l]) / scale);
             }
 
         for (const auto method : methods)
@@ -142,34 +142,35 @@ namespace tissuefem::materials
             Tensor<2, dim> P2;
             Tensor<4, dim> A2;
             material.stress_and_tangent(F, fibre, P2, A2, method);
-            report.method_spread =
-              std::max(report.method_spread, max_abs(P2 - P) / scale);
+            report.method_spread
+              = std::max(report.method_spread, max_abs(P2 - P) / scale);
             for (unsigned int i = 0; i < dim; ++i)
               for (unsigned int j = 0; j < dim; ++j)
                 for (unsigned int k = 0; k < dim; ++k)
                   for (unsigned int l = 0; l < dim; ++l)
                     {
-                      report.method_spread =
-                        std::max(report.method_spread,
-                                 std::abs(A2[i][j][k][l] - A[i][j][k][l]) /
-                                   scale);
-                      report.major_asymmetry =
-                        std::max(report.major_asymmetry,
-                                 std::abs(A[i][j][k][l] - A[k][l][i][j]) /
-                                   scale);
+                      report.method_spread
+                        = std::max(report.method_spread,
+                                   std::abs(A2[i][j][k][l] - A[i][j][k][l])
+                                     / scale);
+                      report.major_asymmetry
+                        = std::max(report.major_asymmetry,
+                                   std::abs(A[i][j][k][l] - A[k][l][i][j])
+                                     / scale);
                     }
           }
 
         // Taylor remainders at h and h/2 along a random direction.
-        const Tensor<2, dim> dF = random_tensor<dim>(random, 1.);
-        const double psi = material.energy_density(F, fibre);
-        auto remainders = [&](const double t, double &r_energy, double &r_stress) {
-          const Tensor<2, dim> Ft = F + t * dF;
-          r_energy = std::abs(material.energy_density(Ft, fibre) - psi -
-                              t * scalar_product(P, dF));
-          r_stress = max_abs(material.stress(Ft, fibre) - P -
-                             t * double_contract<2, 0, 3, 1>(A, dF));
-        };
+        const Tensor<2, dim> dF  = random_tensor<dim>(random, 1.);
+        const double         psi = material.energy_density(F, fibre);
+        auto                 remainders
+          = [&](const double t, double &r_energy, double &r_stress) {
+              const Tensor<2, dim> Ft = F + t * dF;
+              r_energy = std::abs(material.energy_density(Ft, fibre) - psi
+                                  - t * scalar_product(P, dF));
+              r_stress = max_abs(material.stress(Ft, fibre) - P
+                                 - t * double_contract<2, 0, 3, 1>(A, dF));
+            };
         double e1, s1, e2, s2;
         remainders(1e-3, e1, s1);
         remainders(5e-4, e2, s2);
@@ -177,19 +178,21 @@ namespace tissuefem::materials
         // linear) has no meaningful slope; count it as exact.
         const double e_slope = e1 < 1e-13 * scale ? 2. : std::log2(e1 / e2);
         const double s_slope = s1 < 1e-13 * scale ? 2. : std::log2(s1 / s2);
-        report.energy_taylor_slope = std::min(report.energy_taylor_slope, e_slope);
-        report.stress_taylor_slope = std::min(report.stress_taylor_slope, s_slope);
+        report.energy_taylor_slope
+          = std::min(report.energy_taylor_slope, e_slope);
+        report.stress_taylor_slope
+          = std::min(report.stress_taylor_slope, s_slope);
 
         if (material.frame_indifferent())
           {
             const Tensor<2, dim> Q = random_rotation<dim>(random);
-            const double d_energy =
-              std::abs(material.energy_density(Q * F, fibre) - psi) /
-              std::max(std::abs(psi), stress_scale);
-            const double d_stress =
-              max_abs(material.stress(Q * F, fibre) - Q * P) / scale;
-            report.frame_indifference =
-              std::max({report.frame_indifference, d_energy, d_stress});
+            const double         d_energy
+              = std::abs(material.energy_density(Q * F, fibre) - psi)
+                / std::max(std::abs(psi), stress_scale);
+            const double d_stress
+              = max_abs(material.stress(Q * F, fibre) - Q * P) / scale;
+            report.frame_indifference
+              = std::max({report.frame_indifference, d_energy, d_stress});
           }
         else
           report.frame_indifference = -1;
@@ -205,9 +208,10 @@ namespace tissuefem::materials
     out << std::left << std::setw(52) << "model" << std::right << std::setw(4)
         << "dim" << std::setw(10) << "P(I)" << std::setw(10) << "P-FD"
         << std::setw(10) << "A-FD" << std::setw(10) << "methods"
-        << std::setw(10) << "A-A^T" << std::setw(8) << "slopeW"
-        << std::setw(8) << "slopeP" << std::setw(10) << "QF" << std::setw(6)
-        << "J<0" << std::setw(6) << "ok" << "\n";
+        << std::setw(10) << "A-A^T" << std::setw(8) << "slopeW" << std::setw(8)
+        << "slopeP" << std::setw(10) << "QF" << std::setw(6) << "J<0"
+        << std::setw(6) << "ok"
+        << "\n";
     for (const auto &r : reports)
       {
         out << std::left << std::setw(52) << r.model << std::right

@@ -34,12 +34,12 @@ namespace tissuefem::materials
   template <int dim>
   FibreReinforced<dim>::FibreReinforced(const ElasticConstants &constants,
                                         const ParameterHandler &prm)
-    : matrix(constants, prm)
+      : matrix(constants, prm)
   {
     const std::vector<std::string> path = {"Materials", subsection};
-    exponential_law = prm.get(path, "Fibre law") == "exponential";
-    k1              = prm.get_double(path, "Fibre stiffness k1");
-    k2              = prm.get_double(path, "Fibre exponent k2");
+    exponential_law        = prm.get(path, "Fibre law") == "exponential";
+    k1                     = prm.get_double(path, "Fibre stiffness k1");
+    k2                     = prm.get_double(path, "Fibre exponent k2");
     const std::string name = "Materials/" + subsection + "/";
     require(k1 >= 0, name + "Fibre stiffness k1", "must be >= 0");
     require(k2 > 0, name + "Fibre exponent k2", "must be > 0");

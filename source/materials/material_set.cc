@@ -57,13 +57,13 @@ namespace tissuefem::materials
                         Patterns::List(Patterns::Selection(
                           MaterialRegistry<3>::instance().selection_pattern())),
                         "The constitutive model per material id (or one for "
-                        "all). " +
-                          MaterialRegistry<3>::instance().documentation());
-      prm.declare_entry(
-        "Elastic constants",
-        "Young's modulus and Poisson's ratio",
-        Patterns::Selection("Young's modulus and Poisson's ratio|Lame"),
-        "Which pair below defines the elastic constants.");
+                        "all). "
+                          + MaterialRegistry<3>::instance().documentation());
+      prm.declare_entry("Elastic constants",
+                        "Young's modulus and Poisson's ratio",
+                        Patterns::Selection(
+                          "Young's modulus and Poisson's ratio|Lame"),
+                        "Which pair below defines the elastic constants.");
       prm.declare_entry("Young's modulus",
                         "1000",
                         Patterns::List(Patterns::Double()),
@@ -106,7 +106,8 @@ namespace tissuefem::materials
         "1; 0; 0",
         Patterns::Anything(),
         "Reference fibre direction a for anisotropic models, 'a_x; a_y; a_z' "
-        "as functions of x, y, z (the first Dimension of them are read); normalized to unit "
+        "as functions of x, y, z (the first Dimension of them are read); "
+        "normalized to unit "
         "length at every quadrature point, and must not vanish there. Written "
         "to the VTU output as 'fibre_direction'.");
       prm.declare_entry(
@@ -130,14 +131,16 @@ namespace tissuefem::materials
     std::vector<std::string>
     read_list(ParameterHandler &prm, const std::string &name, const unsigned n)
     {
-      std::vector<std::string> values =
-        Utilities::split_string_list(prm.get(name));
+      std::vector<std::string> values
+        = Utilities::split_string_list(prm.get(name));
       if (values.size() == 1)
         values.resize(n, values[0]);
       require(values.size() == n,
               "Materials/" + name,
-              "expected 1 or " + std::to_string(n) + " values (one per "
-              "material id), got " + std::to_string(values.size()));
+              "expected 1 or " + std::to_string(n)
+                + " values (one per "
+                  "material id), got "
+                + std::to_string(values.size()));
       return values;
     }
 
@@ -171,8 +174,7 @@ namespace tissuefem::materials
   {
     prm.enter_subsection("Materials");
     material_ids.clear();
-    for (const auto &id :
-         Utilities::split_string_list(prm.get("Material ids")))
+    for (const auto &id : Utilities::split_string_list(prm.get("Material ids")))
       material_ids.push_back(Utilities::string_to_int(id));
     const unsigned int n = std::max<std::size_t>(material_ids.size(), 1);
 
@@ -212,7 +214,8 @@ namespace tissuefem::materials
             require(nu[i] > -1 && nu[i] < 0.5,
                     "Materials/Poisson's ratio",
                     "must satisfy -1 < nu < 0.5, got " + std::to_string(nu[i]));
-            constants.push_back(ElasticConstants::from_young_poisson(E[i], nu[i]));
+            constants.push_back(
+              ElasticConstants::from_young_poisson(E[i], nu[i]));
           }
       }
     tangent_method          = parse_tangent_method(prm.get("Tangent"));
@@ -225,31 +228,31 @@ namespace tissuefem::materials
   template <int dim>
   MaterialSet<dim>::MaterialSet(const MaterialParameters &parameters,
                                 const ParameterHandler   &prm)
-    : method(parameters.tangent_method)
-    , fibre(make_function<dim>(leading_components(parameters.fibre_direction,
-                                                  dim),
-                               dim,
-                               "Materials/Fibre direction"))
-    , edge_length(parameters.edge_length_formulation)
+      : method(parameters.tangent_method)
+      , fibre(make_function<dim>(leading_components(parameters.fibre_direction,
+                                                    dim),
+                                 dim,
+                                 "Materials/Fibre direction"))
+      , edge_length(parameters.edge_length_formulation)
   {
     for (unsigned int i = 0; i < parameters.model_names.size(); ++i)
       {
-        const types::material_id key = parameters.material_ids.empty() ?
-                                         numbers::invalid_material_id :
-                                         parameters.material_ids[i];
-        Entry entry{MaterialRegistry<dim>::instance().create(
+        const types::material_id key = parameters.material_ids.empty()
+                                         ? numbers::invalid_material_id
+                                         : parameters.material_ids[i];
+        Entry                    entry{MaterialRegistry<dim>::instance().create(
                       parameters.model_names[i], parameters.constants[i], prm),
                     parameters.densities[i]};
-        require(method != TangentMethod::hand_coded ||
-                  entry.model->has_hand_coded_tangent(),
+        require(method != TangentMethod::hand_coded
+                  || entry.model->has_hand_coded_tangent(),
                 "Materials/Tangent",
-                "'hand coded' is not available for model '" +
-                  parameters.model_names[i] + "'");
+                "'hand coded' is not available for model '"
+                  + parameters.model_names[i] + "'");
         require(!edge_length || entry.model->has_edge_length_form(),
                 "Materials/Formulation",
-                "'edge length' is not available for model '" +
-                  parameters.model_names[i] +
-                  "' (it is not written in C = F^T F)");
+                "'edge length' is not available for model '"
+                  + parameters.model_names[i]
+                  + "' (it is not written in C = F^T F)");
         entries[key] = std::move(entry);
       }
   }
@@ -264,9 +267,9 @@ namespace tissuefem::materials
     for (const auto &cell : triangulation.active_cell_iterators())
       require(entries.count(cell->material_id()) > 0,
               "Materials/Material ids",
-              "the mesh has cells with material id " +
-                std::to_string(cell->material_id()) +
-                ", which is not listed");
+              "the mesh has cells with material id "
+                + std::to_string(cell->material_id())
+                + ", which is not listed");
   }
 
 
@@ -333,8 +336,8 @@ namespace tissuefem::materials
         std::ostringstream where;
         where << X;
         throw InputError("Parameter 'Materials/Fibre direction': the "
-                         "direction vanishes or is not finite at (" +
-                         where.str() + ")");
+                         "direction vanishes or is not finite at ("
+                         + where.str() + ")");
       }
     return a / length;
   }

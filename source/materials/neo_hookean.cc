@@ -9,9 +9,10 @@ namespace tissuefem::materials
   NeoHookeanFamily<dim, Volume>::NeoHookeanFamily(
     const ElasticConstants &constants,
     const ParameterHandler &)
-    : lambda(constants.lambda)
-    , mu(constants.mu)
-  {}
+      : lambda(constants.lambda)
+      , mu(constants.mu)
+  {
+  }
 
 
   template <int dim, typename Volume>
@@ -44,7 +45,7 @@ namespace tissuefem::materials
   template class NeoHookeanFamily<2, CubicVolume>;
   template class NeoHookeanFamily<3, CubicVolume>;
 
-TISSUEFEM_REGISTER_MATERIAL(
+  TISSUEFEM_REGISTER_MATERIAL(
     NeoHookean,
     "neo-Hookean",
     "compressible neo-Hookean, Psi = mu/2 (tr F^T F - d) - mu log J + "
@@ -54,5 +55,5 @@ TISSUEFEM_REGISTER_MATERIAL(
     "robust neo-Hookean",
     "inversion-robust neo-Hookean: log J replaced by its cubic Taylor "
     "expansion r(J) about J = 1 (Teran eq 2.9); defined for every F.")
-  
+
 } // namespace tissuefem::materials

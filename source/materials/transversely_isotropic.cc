@@ -32,8 +32,8 @@ namespace tissuefem::materials
   TransverselyIsotropic<dim>::TransverselyIsotropic(
     const ElasticConstants &constants,
     const ParameterHandler &prm)
-    : lambda(constants.lambda)
-    , mu(constants.mu)
+      : lambda(constants.lambda)
+      , mu(constants.mu)
   {
     const std::vector<std::string> path = {"Materials", subsection};
     const double E_L  = prm.get_double(path, "Young's modulus along fibre");
@@ -43,8 +43,8 @@ namespace tissuefem::materials
     require(nu_L > -1 && nu_L < 0.5,
             name + "Poisson's ratio along fibre",
             "must satisfy -1 < nu < 0.5");
-    const ElasticConstants along =
-      ElasticConstants::from_young_poisson(E_L, nu_L);
+    const ElasticConstants along
+      = ElasticConstants::from_young_poisson(E_L, nu_L);
     fibre_coefficient = 0.5 * (along.lambda - lambda) + (along.mu - mu);
   }
 

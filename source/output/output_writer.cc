@@ -70,11 +70,11 @@ namespace tissuefem::output
   OutputParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Output");
-    directory        = prm.get("Directory");
-    vtu_interval     = prm.get_integer("VTU interval");
-    probe_points     = prm.get("Probe points");
-    summary_file     = prm.get("Summary file");
-    summary_interval = prm.get_integer("Summary interval");
+    directory         = prm.get("Directory");
+    vtu_interval      = prm.get_integer("VTU interval");
+    probe_points      = prm.get("Probe points");
+    summary_file      = prm.get("Summary file");
+    summary_interval  = prm.get_integer("Summary interval");
     report_rest_shape = prm.get_bool("Report rest shape");
     reaction_boundary_ids.clear();
     for (const auto &id :
@@ -88,21 +88,22 @@ namespace tissuefem::output
   template <int dim>
   OutputWriter<dim>::OutputWriter(const OutputParameters        &parameters,
                                   const solid::SolidSystem<dim> &system)
-    : parameters(parameters)
-    , system(system)
+      : parameters(parameters)
+      , system(system)
   {
     const auto &d = system.get_discretization();
-    probes        = std::make_unique<Probes<dim>>(
-      parse_points<dim>(parameters.probe_points, "Output/Probe points"),
-      *d.mapping,
-      d.dof_handler,
-      "Output/Probe points");
+    probes
+      = std::make_unique<Probes<dim>>(parse_points<dim>(parameters.probe_points,
+                                                        "Output/Probe points"),
+                                      *d.mapping,
+                                      d.dof_handler,
+                                      "Output/Probe points");
   }
 
 
   namespace
   {
-    const char *coordinate_names[] = {"X", "Y", "Z"};
+    const char *coordinate_names[]   = {"X", "Y", "Z"};
     const char *displacement_names[] = {"ux", "uy", "uz"};
 
     void
@@ -180,8 +181,8 @@ namespace tissuefem::output
                       << std::endl;
 
     const auto values = probes->evaluate(u);
-    const bool summarize =
-      summary.is_open() && s.step % parameters.summary_interval == 0;
+    const bool summarize
+      = summary.is_open() && s.step % parameters.summary_interval == 0;
     for (unsigned int p = 0; p < values.size(); ++p)
       {
         std::ostringstream row;
@@ -235,7 +236,8 @@ namespace tissuefem::output
   {
     const auto &d = system.get_discretization();
     const std::vector<DataComponentInterpretation::DataComponentInterpretation>
-      vector_field(dim, DataComponentInterpretation::component_is_part_of_vector);
+      vector_field(dim,
+                   DataComponentInterpretation::component_is_part_of_vector);
 
     Vector<float> jacobian, von_mises;
     system.cell_fields(u, jacobian, von_mises);
@@ -258,7 +260,7 @@ namespace tissuefem::output
     data_out.add_data_vector(von_mises, "von_Mises_Cauchy_stress");
     data_out.add_data_vector(material_id, "material_id");
     const std::vector<Vector<float>> fibre = system.cell_fibre_directions();
-    static const char *fibre_names[] = {"fibre_x", "fibre_y", "fibre_z"};
+    static const char *fibre_names[]       = {"fibre_x", "fibre_y", "fibre_z"};
     for (unsigned int c = 0; c < fibre.size(); ++c)
       data_out.add_data_vector(fibre[c], fibre_names[c]);
     data_out.build_patches(*d.mapping, d.fe->degree);

@@ -12,8 +12,8 @@ namespace tissuefem::output
                       const Mapping<dim>            &mapping,
                       const DoFHandler<dim>         &dof_handler,
                       const std::string             &parameter)
-    : locations(points)
-    , dof_handler(dof_handler)
+      : locations(points)
+      , dof_handler(dof_handler)
   {
     for (const auto &p : points)
       {
@@ -21,8 +21,10 @@ namespace tissuefem::output
         where << "(" << p << ")";
         try
           {
-            const auto found =
-              GridTools::find_active_cell_around_point(mapping, dof_handler, p);
+            const auto found
+              = GridTools::find_active_cell_around_point(mapping,
+                                                         dof_handler,
+                                                         p);
             require(found.first.state() == IteratorState::valid,
                     parameter,
                     "point " + where.str() + " lies outside the mesh");
@@ -31,8 +33,8 @@ namespace tissuefem::output
           }
         catch (const ExceptionBase &)
           {
-            throw InputError("Parameter '" + parameter + "': point " +
-                             where.str() + " lies outside the mesh");
+            throw InputError("Parameter '" + parameter + "': point "
+                             + where.str() + " lies outside the mesh");
           }
       }
   }
@@ -42,7 +44,7 @@ namespace tissuefem::output
   std::vector<Vector<double>>
   Probes<dim>::evaluate(const Vector<double> &u) const
   {
-    const auto &fe = dof_handler.get_fe();
+    const auto                          &fe = dof_handler.get_fe();
     std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
     std::vector<Vector<double>>          values;
     for (unsigned int p = 0; p < cells.size(); ++p)
@@ -50,8 +52,8 @@ namespace tissuefem::output
         Vector<double> value(fe.n_components());
         cells[p]->get_dof_indices(dofs);
         for (unsigned int i = 0; i < dofs.size(); ++i)
-          value[fe.system_to_component_index(i).first] +=
-            u[dofs[i]] * fe.shape_value(i, reference_points[p]);
+          value[fe.system_to_component_index(i).first]
+            += u[dofs[i]] * fe.shape_value(i, reference_points[p]);
         values.push_back(value);
       }
     return values;

@@ -35,18 +35,19 @@ namespace tissuefem::problems
 
     void
     setup() override
-    {}
+    {
+    }
 
     void
     run() override;
 
   private:
-    ParameterHandler                &prm;
-    materials::MaterialParameters    material_parameters;
-    boundary::BoundaryParameters     boundary_parameters;
-    solid::FiniteElementParameters   fe_parameters;
-    std::string                      hexahedra, tetrahedra;
-    unsigned int                     repetitions;
+    ParameterHandler              &prm;
+    materials::MaterialParameters  material_parameters;
+    boundary::BoundaryParameters   boundary_parameters;
+    solid::FiniteElementParameters fe_parameters;
+    std::string                    hexahedra, tetrahedra;
+    unsigned int                   repetitions;
 
     void
     benchmark_mesh(const std::string &cell_type,
@@ -80,7 +81,7 @@ namespace tissuefem::problems
   template <int dim>
   AssemblyBenchmark<dim>::AssemblyBenchmark(ParameterHandler &prm,
                                             const RunContext &)
-    : prm(prm)
+      : prm(prm)
   {
     material_parameters.parse_parameters(prm);
     boundary_parameters.parse_parameters(prm);
@@ -135,15 +136,16 @@ namespace tissuefem::problems
               << material_parameters.model_names[0] << "'\n"
               << std::setw(32) << "tangent" << std::setw(14) << "us per cell"
               << std::setw(16) << "ratio to hand" << std::setw(34)
-              << "max|K - K_hand| / max|K_hand|" << "\n";
+              << "max|K - K_hand| / max|K_hand|"
+              << "\n";
 
-    std::vector<std::pair<std::string, materials::TangentMethod>> methods = {
-      {"hand coded", materials::TangentMethod::hand_coded},
-      {"automatic differentiation",
-       materials::TangentMethod::automatic_differentiation},
-      {"automatic differentiation in F",
-       materials::TangentMethod::automatic_differentiation_in_F},
-      {"deal.II AD helper", materials::TangentMethod::dealii_ad_helper}};
+    std::vector<std::pair<std::string, materials::TangentMethod>> methods
+      = {{"hand coded", materials::TangentMethod::hand_coded},
+         {"automatic differentiation",
+          materials::TangentMethod::automatic_differentiation},
+         {"automatic differentiation in F",
+          materials::TangentMethod::automatic_differentiation_in_F},
+         {"deal.II AD helper", materials::TangentMethod::dealii_ad_helper}};
 
     double               hand_time = 0;
     SparseMatrix<double> reference;
@@ -167,12 +169,13 @@ namespace tissuefem::problems
                               std::chrono::steady_clock::now() - start)
                               .count());
           }
-        const double per_cell = 1e6 * best / triangulation.n_active_cells();
+        const double per_cell   = 1e6 * best / triangulation.n_active_cells();
         double       difference = 0;
         if (method == materials::TangentMethod::hand_coded)
           {
             hand_time = per_cell;
-            reference_sparsity.copy_from(system.tangent().get_sparsity_pattern());
+            reference_sparsity.copy_from(
+              system.tangent().get_sparsity_pattern());
             reference.reinit(reference_sparsity);
             reference.copy_from(system.tangent());
           }

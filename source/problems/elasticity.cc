@@ -14,13 +14,13 @@ namespace tissuefem::problems
 {
   template <int dim>
   Elasticity<dim>::Elasticity(ParameterHandler &prm, const RunContext &context)
-    : prm(prm)
+      : prm(prm)
   {
     geometry_parameters.parse_parameters(prm);
     const std::filesystem::path mesh(geometry_parameters.mesh_file);
     if (!mesh.empty() && mesh.is_relative())
-      geometry_parameters.mesh_file =
-        (std::filesystem::path(context.parameter_directory) / mesh).string();
+      geometry_parameters.mesh_file
+        = (std::filesystem::path(context.parameter_directory) / mesh).string();
     fe_parameters.parse_parameters(prm);
     material_parameters.parse_parameters(prm);
     boundary_parameters.parse_parameters(prm);
@@ -45,21 +45,23 @@ namespace tissuefem::problems
   Elasticity<dim>::setup()
   {
     geometry::build_triangulation(geometry_parameters, triangulation);
-    materials = std::make_unique<materials::MaterialSet<dim>>(
-      material_parameters, prm);
+    materials
+      = std::make_unique<materials::MaterialSet<dim>>(material_parameters, prm);
     materials->check_covers(triangulation);
-    boundary_conditions =
-      std::make_unique<boundary::BoundaryConditions<dim>>(boundary_parameters);
+    boundary_conditions = std::make_unique<boundary::BoundaryConditions<dim>>(
+      boundary_parameters);
     boundary_conditions->check_boundary_ids(triangulation);
-    discretization = std::make_unique<solid::Discretization<dim>>(
-      triangulation, fe_parameters, dim);
-    system = std::make_unique<solid::SolidSystem<dim>>(*discretization,
+    discretization = std::make_unique<solid::Discretization<dim>>(triangulation,
+                                                                  fe_parameters,
+                                                                  dim);
+    system         = std::make_unique<solid::SolidSystem<dim>>(*discretization,
                                                        *materials,
                                                        *boundary_conditions);
-    integrator = time::IntegratorRegistry::instance().create(
-      time_parameters.integrator, prm);
-    linear_solver =
-      std::make_unique<solvers::LinearSolver>(linear_solver_parameters);
+    integrator
+      = time::IntegratorRegistry::instance().create(time_parameters.integrator,
+                                                    prm);
+    linear_solver
+      = std::make_unique<solvers::LinearSolver>(linear_solver_parameters);
     if (linear_solver_parameters.type != "direct")
       {
         std::vector<std::vector<bool>> modes;
@@ -72,10 +74,10 @@ namespace tissuefem::problems
     for (const auto id : output_parameters.reaction_boundary_ids)
       require(std::find(present.begin(), present.end(), id) != present.end(),
               "Output/Reaction boundary ids",
-              "boundary id " + std::to_string(id) +
-                " is on no boundary face of the mesh");
-    writer = std::make_unique<output::OutputWriter<dim>>(output_parameters,
-                                                         *system);
+              "boundary id " + std::to_string(id)
+                + " is on no boundary face of the mesh");
+    writer
+      = std::make_unique<output::OutputWriter<dim>>(output_parameters, *system);
   }
 
 
@@ -101,11 +103,12 @@ namespace tissuefem::problems
     system->initial_state(u, v);
     system->apply_dirichlet_values(0., u);
     const auto &reaction_ids = output_parameters.reaction_boundary_ids;
-    u_tilde = u;
-    writer->write_step({0, 0., 0., 0, 0., 0., 0.},
-                       u,
-                       v,
-                       system->reaction_forces(u, u_tilde, 0., 0., reaction_ids));
+    u_tilde                  = u;
+    writer->write_step(
+      {0, 0., 0., 0, 0., 0., 0.},
+      u,
+      v,
+      system->reaction_forces(u, u_tilde, 0., 0., reaction_ids));
 
     const double end_time = time_parameters.end_time;
     double       t        = 0;
@@ -120,16 +123,20 @@ namespace tissuefem::problems
             const double mass_coefficient = integrator->mass_coefficient(h);
             integrator->predict(u, v, h, u_tilde, u_new);
             system->apply_dirichlet_values(t + h, u_new);
-            auto assemble =
-              [&](const Vector<double> &x, Vector<double> &r, bool jacobian) {
-                system->assemble(x, u_tilde, mass_coefficient, t + h, r, jacobian);
-              };
+            auto assemble
+              = [&](const Vector<double> &x, Vector<double> &r, bool jacobian) {
+                  system->assemble(
+                    x, u_tilde, mass_coefficient, t + h, r, jacobian);
+                };
             auto solve = [&](Vector<double> &x, const Vector<double> &b) {
               linear_solver->solve(system->tangent(), x, b);
             };
             {
               TimerOutput::Scope scope(timer, "Newton (assembly + solve)");
-              result = solvers::solve_newton(newton_parameters, u_new, assemble, solve);
+              result = solvers::solve_newton(newton_parameters,
+                                             u_new,
+                                             assemble,
+                                             solve);
             }
             if (result.converged)
               break;
@@ -137,21 +144,17 @@ namespace tissuefem::problems
             message << "Newton failed at t = " << t + h << " with dt = " << h
                     << ": " << result.failure;
             if (halvings == time_parameters.max_step_halvings)
-              throw SolverError(message.str() + "; gave up after " +
-                                std::to_string(halvings) +
-                                " step halvings ('Time integration/Maximum "
-                                "step halvings')");
-            std::cout << "  " << message.str() << "; retrying with dt = "
-                      << h / 2 << std::endl;
+              throw SolverError(message.str() + "; gave up after "
+                                + std::to_string(halvings)
+                                + " step halvings ('Time integration/Maximum "
+                                  "step halvings')");
+            std::cout << "  " << message.str()
+                      << "; retrying with dt = " << h / 2 << std::endl;
             h /= 2;
           }
 
-        const auto reactions =
-          system->reaction_forces(u_new,
-                                  u_tilde,
-                                  integrator->mass_coefficient(h),
-                                  t + h,
-                                  reaction_ids);
+        const auto reactions = system->reaction_forces(
+          u_new, u_tilde, integrator->mass_coefficient(h), t + h, reaction_ids);
         integrator->velocity(u_new, u, v, h, v_new);
         u = u_new;
         v = v_new;
@@ -167,8 +170,9 @@ namespace tissuefem::problems
                                                 result.residual_norms.back(),
                                                 result.assembly_seconds,
                                                 result.solve_seconds};
-        std::cout << "step " << std::setw(5) << step << "  t = " << std::setw(10)
-                  << t << "  dt = " << std::setw(10) << h << "  Newton "
+        std::cout << "step " << std::setw(5) << step
+                  << "  t = " << std::setw(10) << t
+                  << "  dt = " << std::setw(10) << h << "  Newton "
                   << std::setw(2) << result.iterations
                   << "  |R| = " << std::scientific << std::setprecision(2)
                   << result.residual_norms.back() << std::defaultfloat

@@ -51,8 +51,8 @@ namespace tissuefem::problems
     output::OutputParameters             output_parameters;
     unsigned int                         cycles;
     std::unique_ptr<FunctionParser<dim>> coefficient, rhs, exact;
-    std::vector<std::pair<types::boundary_id,
-                          std::unique_ptr<FunctionParser<dim>>>>
+    std::vector<
+      std::pair<types::boundary_id, std::unique_ptr<FunctionParser<dim>>>>
       dirichlet, neumann;
 
     void
@@ -112,25 +112,8 @@ namespace tissuefem::problems
       std::vector<
         std::pair<types::boundary_id, std::unique_ptr<FunctionParser<dim>>>>
         result;
-      for (const auto &entry : split_entries(text))
-        {
-          const auto colon = entry.find(':');
-          require(colon != std::string::npos,
-                  parameter,
-                  "entry '" + entry + "' is not 'id: expression'");
-          int id = -1;
-          try
-            {
-              id = std::stoi(entry.substr(0, colon));
-            }
-          catch (...)
-            {}
-          require(id >= 0 && id < 255, parameter, "bad boundary id in '" + entry + "'");
-          result.emplace_back(id,
-                              make_function<dim>(entry.substr(colon + 1),
-                                                 1,
-                                                 parameter));
-        }
+      for (const auto &[id, expression] : parse_id_entries(text, parameter))
+        result.emplace_back(id, make_function<dim>(expression, 1, parameter));
       return result;
     }
   } // namespace
@@ -143,8 +126,11 @@ namespace tissuefem::problems
     fe_parameters.parse_parameters(prm);
     output_parameters.parse_parameters(prm);
     prm.enter_subsection("Poisson");
-    coefficient = make_function<dim>(prm.get("Coefficient"), 1, "Poisson/Coefficient");
-    rhs = make_function<dim>(prm.get("Right hand side"), 1, "Poisson/Right hand side");
+    coefficient
+      = make_function<dim>(prm.get("Coefficient"), 1, "Poisson/Coefficient");
+    rhs = make_function<dim>(prm.get("Right hand side"),
+                             1,
+                             "Poisson/Right hand side");
     if (!prm.get("Exact solution").empty())
       {
         exact = make_function<dim>(prm.get("Exact solution"),
@@ -153,9 +139,11 @@ namespace tissuefem::problems
         // Central differences of fourth order for the H1 error's gradient.
         exact->set_formula(AutoDerivativeFunction<dim>::FourthOrder);
       }
-    dirichlet = parse_scalar_boundary_data<dim>(prm.get("Dirichlet"), "Poisson/Dirichlet");
-    neumann   = parse_scalar_boundary_data<dim>(prm.get("Neumann"), "Poisson/Neumann");
-    cycles    = prm.get_integer("Refinement cycles");
+    dirichlet = parse_scalar_boundary_data<dim>(prm.get("Dirichlet"),
+                                                "Poisson/Dirichlet");
+    neumann
+      = parse_scalar_boundary_data<dim>(prm.get("Neumann"), "Poisson/Neumann");
+    cycles = prm.get_integer("Refinement cycles");
     prm.leave_subsection();
   }
 
@@ -171,8 +159,8 @@ namespace tissuefem::problems
       for (const auto &entry : *list)
         require(std::find(ids.begin(), ids.end(), entry.first) != ids.end(),
                 list == &dirichlet ? "Poisson/Dirichlet" : "Poisson/Neumann",
-                "boundary id " + std::to_string(entry.first) +
-                  " is on no boundary face of the mesh");
+                "boundary id " + std::to_string(entry.first)
+                  + " is on no boundary face of the mesh");
   }
 
 
@@ -199,19 +187,19 @@ namespace tissuefem::problems
     SparseMatrix<double> matrix(sparsity);
     Vector<double>       solution(n_dofs), system_rhs(n_dofs);
 
-    FEValues<dim>     fe_values(*d.mapping,
+    FEValues<dim>                        fe_values(*d.mapping,
                             *d.fe,
                             d.cell_quadrature,
-                            update_values | update_gradients |
-                              update_quadrature_points | update_JxW_values);
-    FEFaceValues<dim> fe_face_values(*d.mapping,
+                            update_values | update_gradients
+                              | update_quadrature_points | update_JxW_values);
+    FEFaceValues<dim>                    fe_face_values(*d.mapping,
                                      *d.fe,
                                      d.face_quadrature,
-                                     update_values | update_quadrature_points |
-                                       update_JxW_values);
-    const unsigned int n = d.fe->n_dofs_per_cell();
-    FullMatrix<double> cell_matrix(n, n);
-    Vector<double>     cell_rhs(n);
+                                     update_values | update_quadrature_points
+                                       | update_JxW_values);
+    const unsigned int                   n = d.fe->n_dofs_per_cell();
+    FullMatrix<double>                   cell_matrix(n, n);
+    Vector<double>                       cell_rhs(n);
     std::vector<types::global_dof_index> dofs(n);
 
     for (const auto &cell : d.dof_handler.active_cell_iterators())
@@ -227,11 +215,11 @@ namespace tissuefem::problems
             for (unsigned int i = 0; i < n; ++i)
               {
                 for (unsigned int j = 0; j < n; ++j)
-                  cell_matrix(i, j) += beta * fe_values.shape_grad(i, q) *
-                                       fe_values.shape_grad(j, q) *
-                                       fe_values.JxW(q);
-                cell_rhs(i) +=
-                  f * fe_values.shape_value(i, q) * fe_values.JxW(q);
+                  cell_matrix(i, j) += beta * fe_values.shape_grad(i, q)
+                                       * fe_values.shape_grad(j, q)
+                                       * fe_values.JxW(q);
+                cell_rhs(i)
+                  += f * fe_values.shape_value(i, q) * fe_values.JxW(q);
               }
           }
         for (const auto &face : cell->face_iterators())
@@ -243,10 +231,10 @@ namespace tissuefem::problems
                   for (const unsigned int q :
                        fe_face_values.quadrature_point_indices())
                     for (unsigned int i = 0; i < n; ++i)
-                      cell_rhs(i) +=
-                        flux->value(fe_face_values.quadrature_point(q)) *
-                        fe_face_values.shape_value(i, q) *
-                        fe_face_values.JxW(q);
+                      cell_rhs(i)
+                        += flux->value(fe_face_values.quadrature_point(q))
+                           * fe_face_values.shape_value(i, q)
+                           * fe_face_values.JxW(q);
                 }
         cell->get_dof_indices(dofs);
         constraints.distribute_local_to_global(
@@ -261,19 +249,30 @@ namespace tissuefem::problems
     l2_error = h1_error = 0;
     if (!exact)
       return;
-    const Quadrature<dim> error_quadrature =
-      d.simplex ? Quadrature<dim>(QGaussSimplex<dim>(fe_parameters.degree + 2)) :
-                  Quadrature<dim>(QGauss<dim>(fe_parameters.degree + 3));
+    const Quadrature<dim> error_quadrature
+      = d.simplex
+          ? Quadrature<dim>(QGaussSimplex<dim>(fe_parameters.degree + 2))
+          : Quadrature<dim>(QGauss<dim>(fe_parameters.degree + 3));
     Vector<float> cell_errors(triangulation.n_active_cells());
-    VectorTools::integrate_difference(*d.mapping, d.dof_handler, solution,
-                                      *exact, cell_errors, error_quadrature,
+    VectorTools::integrate_difference(*d.mapping,
+                                      d.dof_handler,
+                                      solution,
+                                      *exact,
+                                      cell_errors,
+                                      error_quadrature,
                                       VectorTools::L2_norm);
-    l2_error = VectorTools::compute_global_error(triangulation, cell_errors,
+    l2_error = VectorTools::compute_global_error(triangulation,
+                                                 cell_errors,
                                                  VectorTools::L2_norm);
-    VectorTools::integrate_difference(*d.mapping, d.dof_handler, solution,
-                                      *exact, cell_errors, error_quadrature,
+    VectorTools::integrate_difference(*d.mapping,
+                                      d.dof_handler,
+                                      solution,
+                                      *exact,
+                                      cell_errors,
+                                      error_quadrature,
                                       VectorTools::H1_seminorm);
-    h1_error = VectorTools::compute_global_error(triangulation, cell_errors,
+    h1_error = VectorTools::compute_global_error(triangulation,
+                                                 cell_errors,
                                                  VectorTools::H1_seminorm);
   }
 
@@ -293,8 +292,9 @@ namespace tissuefem::problems
     table << "Poisson problem, " << dim << "D, degree " << fe_parameters.degree
           << "\n"
           << std::setw(8) << "cells" << std::setw(8) << "dofs" << std::setw(14)
-          << "L2 error" << std::setw(8) << "rate" << std::setw(14)
-          << "H1 error" << std::setw(8) << "rate" << "\n";
+          << "L2 error" << std::setw(8) << "rate" << std::setw(14) << "H1 error"
+          << std::setw(8) << "rate"
+          << "\n";
     double previous_l2 = 0, previous_h1 = 0;
     for (unsigned int cycle = 0; cycle < cycles; ++cycle)
       {
@@ -306,8 +306,7 @@ namespace tissuefem::problems
         table << std::setw(8) << triangulation.n_active_cells() << std::setw(8)
               << n_dofs << std::scientific << std::setprecision(4)
               << std::setw(14) << l2 << std::fixed << std::setprecision(2)
-              << std::setw(8)
-              << (cycle > 0 ? std::log2(previous_l2 / l2) : 0.)
+              << std::setw(8) << (cycle > 0 ? std::log2(previous_l2 / l2) : 0.)
               << std::scientific << std::setprecision(4) << std::setw(14) << h1
               << std::fixed << std::setprecision(2) << std::setw(8)
               << (cycle > 0 ? std::log2(previous_h1 / h1) : 0.) << "\n";

@@ -39,20 +39,19 @@ namespace tissuefem::solid
 
 
   template <int dim>
-  Discretization<dim>::Discretization(
-    const Triangulation<dim>      &triangulation,
-    const FiniteElementParameters &parameters,
-    const unsigned int             n_components)
-    : dof_handler(triangulation)
-    , simplex(geometry::is_simplex_mesh(triangulation))
+  Discretization<dim>::Discretization(const Triangulation<dim> &triangulation,
+                                      const FiniteElementParameters &parameters,
+                                      const unsigned int n_components)
+      : dof_handler(triangulation)
+      , simplex(geometry::is_simplex_mesh(triangulation))
   {
     const unsigned int k = parameters.degree;
-    const unsigned int n_q =
-      parameters.quadrature_points > 0 ? parameters.quadrature_points : k + 1;
+    const unsigned int n_q
+      = parameters.quadrature_points > 0 ? parameters.quadrature_points : k + 1;
     if (simplex)
       {
         fe = std::make_unique<FESystem<dim>>(FE_SimplexP<dim>(k), n_components);
-        mapping = std::make_unique<MappingFE<dim>>(FE_SimplexP<dim>(1));
+        mapping         = std::make_unique<MappingFE<dim>>(FE_SimplexP<dim>(1));
         cell_quadrature = QGaussSimplex<dim>(n_q);
         if constexpr (dim == 3)
           face_quadrature = QGaussSimplex<dim - 1>(n_q);

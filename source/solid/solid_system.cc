@@ -23,13 +23,12 @@ namespace tissuefem::solid
                                   const Vector<double>      &u,
                                   const Callback            &f)
     {
-      FEValues<dim> fe_values(*discretization.mapping,
+      FEValues<dim>                    fe_values(*discretization.mapping,
                               *discretization.fe,
                               discretization.cell_quadrature,
                               update_gradients | update_JxW_values);
       const FEValuesExtractors::Vector displacement(0);
-      std::vector<Tensor<2, dim>> grad_u(
-        discretization.cell_quadrature.size());
+      std::vector<Tensor<2, dim>> grad_u(discretization.cell_quadrature.size());
       for (const auto &cell :
            discretization.dof_handler.active_cell_iterators())
         {
@@ -50,16 +49,17 @@ namespace tissuefem::solid
     const Discretization<dim>         &discretization,
     const materials::MaterialSet<dim> &materials,
     boundary::BoundaryConditions<dim> &boundary_conditions)
-    : discretization(discretization)
-    , materials(materials)
-    , boundary_conditions(boundary_conditions)
+      : discretization(discretization)
+      , materials(materials)
+      , boundary_conditions(boundary_conditions)
   {
     const auto &dof_handler = discretization.dof_handler;
     for (const auto &d : boundary_conditions.dirichlet)
       VectorTools::interpolate_boundary_values(*discretization.mapping,
                                                dof_handler,
                                                d.id,
-                                               Functions::ZeroFunction<dim>(dim),
+                                               Functions::ZeroFunction<dim>(
+                                                 dim),
                                                constraints,
                                                d.mask);
     constraints.close();
@@ -93,7 +93,7 @@ namespace tissuefem::solid
 
     if (materials.any_uses_fibres())
       {
-        FEValues<dim> fe_values(*discretization.mapping,
+        FEValues<dim>      fe_values(*discretization.mapping,
                                 *discretization.fe,
                                 discretization.cell_quadrature,
                                 update_quadrature_points);
@@ -103,8 +103,8 @@ namespace tissuefem::solid
           {
             fe_values.reinit(cell);
             for (unsigned int q = 0; q < n_q; ++q)
-              fibres[cell->active_cell_index() * n_q + q] =
-                materials.fibre_direction(fe_values.quadrature_point(q));
+              fibres[cell->active_cell_index() * n_q + q]
+                = materials.fibre_direction(fe_values.quadrature_point(q));
           }
       }
   }
@@ -144,16 +144,17 @@ namespace tissuefem::solid
       u,
       [&](const auto &cell, unsigned int, const Tensor<2, dim> &F, double) {
         const double det = determinant(F);
-        if (det <= 0 &&
-            !materials.material(cell->material_id()).admits_inversion() &&
-            (inverted.empty() ||
-             inverted.back().first != cell->active_cell_index()))
+        if (det <= 0
+            && !materials.material(cell->material_id()).admits_inversion()
+            && (inverted.empty()
+                || inverted.back().first != cell->active_cell_index()))
           inverted.emplace_back(cell->active_cell_index(), cell->center());
         smallest = std::min(smallest, det);
       });
     std::ostringstream message;
-    message << inverted.size() << " element(s) inverted (smallest det F = "
-            << smallest << "): cell";
+    message << inverted.size()
+            << " element(s) inverted (smallest det F = " << smallest
+            << "): cell";
     for (unsigned int i = 0; i < std::min<std::size_t>(inverted.size(), 4); ++i)
       message << (i ? ", " : " ") << inverted[i].first << " at ("
               << inverted[i].second << ")";
@@ -201,8 +202,10 @@ namespace tissuefem::solid
         {
           std::vector<bool> mask(dim, false);
           mask[c] = true;
-          const IndexSet dofs = DoFTools::extract_boundary_dofs(
-            dof_handler, ComponentMask(mask), {boundary_ids[b]});
+          const IndexSet dofs
+            = DoFTools::extract_boundary_dofs(dof_handler,
+                                              ComponentMask(mask),
+                                              {boundary_ids[b]});
           for (const auto dof : dofs)
             forces[b][c] += residual[dof];
         }
@@ -226,15 +229,14 @@ namespace tissuefem::solid
     FEValues<dim>      fe_values(*discretization.mapping,
                             fe,
                             discretization.cell_quadrature,
-                            update_values | update_gradients |
-                              update_JxW_values |
-                              (body_force_present ? update_quadrature_points :
-                                                    update_default));
+                            update_values | update_gradients | update_JxW_values
+                              | (body_force_present ? update_quadrature_points
+                                                         : update_default));
     FEFaceValues<dim>  fe_face_values(*discretization.mapping,
                                      fe,
                                      discretization.face_quadrature,
-                                     update_values | update_quadrature_points |
-                                       update_JxW_values);
+                                     update_values | update_quadrature_points
+                                       | update_JxW_values);
 
     boundary_conditions.set_time(time);
     residual.reinit(n_dofs());
@@ -254,7 +256,7 @@ namespace tissuefem::solid
     Tensor<2, dim>              P;
     Tensor<4, dim>              A;
     const auto                  method = materials.tangent_method();
-    const bool edge_length = materials.edge_length_formulation();
+    const bool edge_length             = materials.edge_length_formulation();
 
     for (const auto &cell : discretization.dof_handler.active_cell_iterators())
       {
@@ -349,9 +351,9 @@ namespace tissuefem::solid
                       neumann.traction->vector_value(
                         fe_face_values.quadrature_point(q), traction);
                       for (unsigned int i = 0; i < n; ++i)
-                        cell_rhs[i] -= traction[component[i]] *
-                                       fe_face_values.shape_value(i, q) *
-                                       fe_face_values.JxW(q);
+                        cell_rhs[i] -= traction[component[i]]
+                                       * fe_face_values.shape_value(i, q)
+                                       * fe_face_values.JxW(q);
                     }
                 }
 
@@ -414,8 +416,8 @@ namespace tissuefem::solid
         cell_rhs[i] += forces[element_index[i]];
         if (cell_matrix)
           for (unsigned int j = i; j < n; ++j)
-            (*cell_matrix)(i, j) +=
-              stiffness[element_index[i] * n + element_index[j]];
+            (*cell_matrix)(i, j)
+              += stiffness[element_index[i] * n + element_index[j]];
       }
   }
 
@@ -459,8 +461,6 @@ namespace tissuefem::solid
   }
 
 
-
-
   template <int dim>
   void
   SolidSystem<dim>::cell_fields(const Vector<double> &u,
@@ -477,17 +477,19 @@ namespace tissuefem::solid
       [&](const auto &cell, unsigned int q, const Tensor<2, dim> &F, double) {
         const double J = determinant(F);
         jacobian[cell->active_cell_index()] += J / n_q;
-        if (J <= 0 && !materials.material(cell->material_id()).admits_inversion())
+        if (J <= 0
+            && !materials.material(cell->material_id()).admits_inversion())
           return;
-        const Tensor<2, dim> P =
-          materials.material(cell->material_id()).stress(F, fibre(cell->active_cell_index(), q));
+        const Tensor<2, dim> P
+          = materials.material(cell->material_id())
+              .stress(F, fibre(cell->active_cell_index(), q));
         const Tensor<2, dim> sigma = (J != 0 ? 1. / J : 0.) * P * transpose(F);
         const double         mean  = trace(sigma) / dim;
         Tensor<2, dim>       deviator = sigma;
         for (unsigned int d = 0; d < dim; ++d)
           deviator[d][d] -= mean;
-        von_mises[cell->active_cell_index()] +=
-          std::sqrt(1.5 * scalar_product(deviator, deviator)) / n_q;
+        von_mises[cell->active_cell_index()]
+          += std::sqrt(1.5 * scalar_product(deviator, deviator)) / n_q;
       });
   }
 
@@ -500,10 +502,11 @@ namespace tissuefem::solid
     for_each_deformation_gradient(
       discretization,
       u,
-      [&](const auto &cell, unsigned int q, const Tensor<2, dim> &F, double JxW) {
+      [&](
+        const auto &cell, unsigned int q, const Tensor<2, dim> &F, double JxW) {
         energy += materials.material(cell->material_id())
-                    .energy_density(F, fibre(cell->active_cell_index(), q)) *
-                  JxW;
+                    .energy_density(F, fibre(cell->active_cell_index(), q))
+                  * JxW;
       });
     return energy;
   }
@@ -516,8 +519,8 @@ namespace tissuefem::solid
     std::vector<Vector<float>> result;
     if (fibres.empty())
       return result;
-    const auto        &triangulation = discretization.dof_handler.get_triangulation();
-    const unsigned int n_q           = discretization.cell_quadrature.size();
+    const auto &triangulation = discretization.dof_handler.get_triangulation();
+    const unsigned int n_q    = discretization.cell_quadrature.size();
     result.assign(dim, Vector<float>(triangulation.n_active_cells()));
     for (unsigned int c = 0; c < triangulation.n_active_cells(); ++c)
       {
@@ -584,13 +587,14 @@ namespace tissuefem::solid
           Ut[i][j] = U(i, j);
           Vt[i][j] = V(i, j);
         }
-    Tensor<2, dim> D = unit_symmetric_tensor<dim>();
-    D[dim - 1][dim - 1] = determinant(Ut * Vt) < 0 ? -1. : 1.;
-    const Tensor<2, dim> R = Ut * D * Vt;
-    double distance = 0;
+    Tensor<2, dim> D              = unit_symmetric_tensor<dim>();
+    D[dim - 1][dim - 1]           = determinant(Ut * Vt) < 0 ? -1. : 1.;
+    const Tensor<2, dim> R        = Ut * D * Vt;
+    double               distance = 0;
     for (const auto &[index, pair] : vertices)
-      distance = std::max(distance,
-                          (x_mean + R * (pair.first - X_mean) - pair.second).norm());
+      distance
+        = std::max(distance,
+                   (x_mean + R * (pair.first - X_mean) - pair.second).norm());
     return distance;
   }
 

@@ -49,8 +49,9 @@ namespace tissuefem::solvers
 
 
   LinearSolver::LinearSolver(const LinearSolverParameters &parameters)
-    : parameters(parameters)
-  {}
+      : parameters(parameters)
+  {
+  }
 
 
   void
@@ -81,7 +82,7 @@ namespace tissuefem::solvers
         amg_data.constant_modes = constant_modes;
         TrilinosWrappers::PreconditionAMG amg;
         amg.initialize(trilinos_matrix, amg_data);
-        SolverControl control(parameters.max_iterations,
+        SolverControl            control(parameters.max_iterations,
                               parameters.relative_tolerance * b.l2_norm());
         SolverCG<Vector<double>> cg(control);
         x = 0;
@@ -89,8 +90,8 @@ namespace tissuefem::solvers
       }
     catch (const ExceptionBase &e)
       {
-        throw SolverError("linear solver (" + parameters.type +
-                          ") failed: " + one_line_message(e));
+        throw SolverError("linear solver (" + parameters.type
+                          + ") failed: " + one_line_message(e));
       }
   }
 } // namespace tissuefem::solvers

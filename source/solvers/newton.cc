@@ -64,8 +64,8 @@ namespace tissuefem::solvers
     double
     seconds_since(const std::chrono::steady_clock::time_point start)
     {
-      return std::chrono::duration<double>(std::chrono::steady_clock::now() -
-                                           start)
+      return std::chrono::duration<double>(std::chrono::steady_clock::now()
+                                           - start)
         .count();
     }
   } // namespace
@@ -85,12 +85,12 @@ namespace tissuefem::solvers
     Vector<double> residual(u.size()), update(u.size()), trial(u.size()),
       trial_residual(u.size()), rhs(u.size());
 
-    auto timed_assemble =
-      [&](const Vector<double> &x, Vector<double> &r, const bool jacobian) {
-        const auto start = Clock::now();
-        assemble(x, r, jacobian);
-        result.assembly_seconds += seconds_since(start);
-      };
+    auto timed_assemble
+      = [&](const Vector<double> &x, Vector<double> &r, const bool jacobian) {
+          const auto start = Clock::now();
+          assemble(x, r, jacobian);
+          result.assembly_seconds += seconds_since(start);
+        };
 
     try
       {
@@ -112,19 +112,18 @@ namespace tissuefem::solvers
             result.failure = "residual is not finite";
             return result;
           }
-        if (norm <= parameters.absolute_residual_tolerance ||
-            (result.iterations > 0 &&
-             norm <= parameters.relative_residual_tolerance * first_norm))
+        if (norm <= parameters.absolute_residual_tolerance
+            || (result.iterations > 0
+                && norm <= parameters.relative_residual_tolerance * first_norm))
           {
             result.converged = true;
             return result;
           }
         if (result.iterations == parameters.max_iterations)
           {
-            result.failure = "no convergence in " +
-                             std::to_string(parameters.max_iterations) +
-                             " iterations (residual norm " +
-                             std::to_string(norm) + ")";
+            result.failure
+              = "no convergence in " + std::to_string(parameters.max_iterations)
+                + " iterations (residual norm " + std::to_string(norm) + ")";
             return result;
           }
 
@@ -137,7 +136,7 @@ namespace tissuefem::solvers
 
         // Backtracking: accept the first step length that lowers |R| (or the
         // full step when the line search is off).
-        double alpha = 1;
+        double alpha    = 1;
         bool   accepted = false;
         for (unsigned int k = 0; k <= parameters.max_line_search_steps; ++k)
           {
@@ -150,10 +149,10 @@ namespace tissuefem::solvers
                 // next iteration needs.
                 timed_assemble(trial, trial_residual, true);
                 const double trial_norm = trial_residual.l2_norm();
-                if (std::isfinite(trial_norm) &&
-                    (trial_norm < norm ||
-                     parameters.max_line_search_steps == 0 ||
-                     k == parameters.max_line_search_steps))
+                if (std::isfinite(trial_norm)
+                    && (trial_norm < norm
+                        || parameters.max_line_search_steps == 0
+                        || k == parameters.max_line_search_steps))
                   {
                     accepted = std::isfinite(trial_norm);
                     break;
@@ -181,8 +180,9 @@ namespace tissuefem::solvers
                     << ", |du| = " << update.l2_norm() << ", step " << alpha
                     << std::endl;
 
-        if (alpha == 1 && update.l2_norm() <=
-                            parameters.update_tolerance * (1 + u.l2_norm()))
+        if (alpha == 1
+            && update.l2_norm()
+                 <= parameters.update_tolerance * (1 + u.l2_norm()))
           {
             result.converged = std::isfinite(norm);
             return result;

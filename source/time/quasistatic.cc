@@ -12,11 +12,13 @@ namespace tissuefem::time
   {
   public:
     explicit Quasistatic(const ParameterHandler &)
-    {}
+    {
+    }
 
     static void
     declare_parameters(ParameterHandler &)
-    {}
+    {
+    }
 
     double
     mass_coefficient(const double) const override
@@ -33,18 +35,6 @@ namespace tissuefem::time
     {
       u_tilde       = u_old;
       initial_guess = u_old;
-    }
-
-    void
-    velocity(const Vector<double> &u_new,
-             const Vector<double> &u_old,
-             const Vector<double> &,
-             const double    dt,
-             Vector<double> &v_new) const override
-    {
-      v_new = u_new;
-      v_new -= u_old;
-      v_new /= dt;
     }
   };
 

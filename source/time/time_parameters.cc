@@ -9,12 +9,11 @@ namespace tissuefem::time
   TimeParameters::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Time integration");
-    prm.declare_entry("Integrator",
-                      "backward Euler",
-                      Patterns::Selection(
-                        IntegratorRegistry::instance().selection_pattern()),
-                      "How time advances. " +
-                        IntegratorRegistry::instance().documentation());
+    prm.declare_entry(
+      "Integrator",
+      "backward Euler",
+      Patterns::Selection(IntegratorRegistry::instance().selection_pattern()),
+      "How time advances. " + IntegratorRegistry::instance().documentation());
     prm.declare_entry("End time",
                       "1",
                       Patterns::Double(),

@@ -64,7 +64,8 @@ namespace
         for (unsigned int k = 2; k <= dim; ++k)
           volume /= k;
 
-        // A random deformation of the nodes, and its F = I + sum u_a (x) alpha_a.
+        // A random deformation of the nodes, and its F = I + sum u_a (x)
+        // alpha_a.
         Tensor<2, dim> F = unit_symmetric_tensor<dim>();
         for (unsigned int a = 0; a <= dim; ++a)
           {
@@ -80,10 +81,11 @@ namespace
         const double        W = volume * model.energy_density(F, fibre);
         double              W_edge;
         std::vector<double> forces, stiffness;
-        model.edge_length_element(alpha, volume, Q, fibre, W_edge, forces, &stiffness);
+        model.edge_length_element(
+          alpha, volume, Q, fibre, W_edge, forces, &stiffness);
 
-        const unsigned int n = (dim + 1) * dim;
-        double force_scale = 1e-300, stiffness_scale = 1e-300;
+        const unsigned int  n           = (dim + 1) * dim;
+        double              force_scale = 1e-300, stiffness_scale = 1e-300;
         std::vector<double> f(n), K(n * n);
         for (unsigned int a = 0; a <= dim; ++a)
           for (unsigned int c = 0; c < dim; ++c)
@@ -103,16 +105,20 @@ namespace
           {
             force_scale = std::max(force_scale, std::abs(f[i]));
             for (unsigned int j = 0; j < n; ++j)
-              stiffness_scale = std::max(stiffness_scale, std::abs(K[i * n + j]));
+              stiffness_scale
+                = std::max(stiffness_scale, std::abs(K[i * n + j]));
           }
-        energy_error = std::max(energy_error, std::abs(W - W_edge) / std::abs(W));
+        energy_error
+          = std::max(energy_error, std::abs(W - W_edge) / std::abs(W));
         for (unsigned int i = 0; i < n; ++i)
           {
-            force_error = std::max(force_error, std::abs(f[i] - forces[i]) / force_scale);
+            force_error
+              = std::max(force_error, std::abs(f[i] - forces[i]) / force_scale);
             for (unsigned int j = 0; j < n; ++j)
-              stiffness_error =
-                std::max(stiffness_error,
-                         std::abs(K[i * n + j] - stiffness[i * n + j]) / stiffness_scale);
+              stiffness_error
+                = std::max(stiffness_error,
+                           std::abs(K[i * n + j] - stiffness[i * n + j])
+                             / stiffness_scale);
           }
 
         // A rigid motion of the undeformed simplex: no energy, no force.
@@ -120,21 +126,30 @@ namespace
         for (unsigned int i = 0; i < dim; ++i)
           for (unsigned int j = 0; j < dim; ++j)
             W0[i][j] = random.uniform();
-        const Tensor<2, dim> skew = W0 - transpose(W0);
-        const Tensor<2, dim> I    = unit_symmetric_tensor<dim>();
-        const Tensor<2, dim> R    = invert(I - skew) * (I + skew);
+        const Tensor<2, dim> skew  = W0 - transpose(W0);
+        const Tensor<2, dim> I     = unit_symmetric_tensor<dim>();
+        const Tensor<2, dim> R     = invert(I - skew) * (I + skew);
         const Tensor<1, dim> shift = random_vector<dim>(random, 5.);
         for (unsigned int a = 0; a <= dim; ++a)
           Q[a] = R * X[a] + shift;
-        model.edge_length_element(alpha, volume, Q, fibre, W_edge, forces, nullptr);
+        model.edge_length_element(
+          alpha, volume, Q, fibre, W_edge, forces, nullptr);
         for (const double value : forces)
           rigid_force = std::max(rigid_force, std::abs(value) / force_scale);
       }
-    const std::string prefix = std::to_string(dim) + "D " + name + ": edge length vs displacement";
-    tissuefem_tests::check_small(energy_error, 1e-12, prefix + ", energy (relative)");
-    tissuefem_tests::check_small(force_error, 1e-12, prefix + ", nodal forces (relative)");
-    tissuefem_tests::check_small(stiffness_error, 1e-12, prefix + ", stiffness (relative)");
-    tissuefem_tests::check_small(rigid_force, 1e-12, prefix + ", forces under rigid motion (relative)");
+    const std::string prefix
+      = std::to_string(dim) + "D " + name + ": edge length vs displacement";
+    tissuefem_tests::check_small(energy_error,
+                                 1e-12,
+                                 prefix + ", energy (relative)");
+    tissuefem_tests::check_small(force_error,
+                                 1e-12,
+                                 prefix + ", nodal forces (relative)");
+    tissuefem_tests::check_small(stiffness_error,
+                                 1e-12,
+                                 prefix + ", stiffness (relative)");
+    tissuefem_tests::check_small(
+      rigid_force, 1e-12, prefix + ", forces under rigid motion (relative)");
   }
 
   template <int dim>

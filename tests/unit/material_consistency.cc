@@ -21,8 +21,8 @@ using namespace tissuefem::materials;
 
 namespace
 {
-  const ElasticConstants constants =
-    ElasticConstants::from_young_poisson(1000, 0.3);
+  const ElasticConstants constants
+    = ElasticConstants::from_young_poisson(1000, 0.3);
 
   template <int dim>
   void
@@ -33,8 +33,8 @@ namespace
         const auto model  = entry.create(constants, prm);
         const auto report = check_consistency<dim>(name, *model, constants.mu);
         tissuefem_tests::check(report.passes(),
-                               std::to_string(dim) + "D " + name +
-                                 ": consistent with its energy",
+                               std::to_string(dim) + "D " + name
+                                 + ": consistent with its energy",
                                "(see tissuefem --check-material)");
         if (!report.passes())
           print_consistency_table(std::cout, {report});
@@ -49,14 +49,14 @@ namespace
   problem_session_tangent(const Tensor<2, 2> &F)
   {
     const double mu = constants.mu, lambda = constants.lambda;
-    const double J            = F[0][0] * F[1][1] - F[0][1] * F[1][0];
-    const double dJ_dF[2][2]  = {{F[1][1], -F[1][0]}, {-F[0][1], F[0][0]}};
-    const double x            = J - 1;
-    const double rJ           = x - x * x / 2 + x * x * x / 3;
-    const double drJ          = 1 - x + x * x;
-    const double d2rJ         = -1 + 2 * x;
-    const double c1           = lambda * drJ * drJ + (lambda * rJ - mu) * d2rJ;
-    const double c2           = (lambda * rJ - mu) * drJ;
+    const double J           = F[0][0] * F[1][1] - F[0][1] * F[1][0];
+    const double dJ_dF[2][2] = {{F[1][1], -F[1][0]}, {-F[0][1], F[0][0]}};
+    const double x           = J - 1;
+    const double rJ          = x - x * x / 2 + x * x * x / 3;
+    const double drJ         = 1 - x + x * x;
+    const double d2rJ        = -1 + 2 * x;
+    const double c1          = lambda * drJ * drJ + (lambda * rJ - mu) * d2rJ;
+    const double c2          = (lambda * rJ - mu) * drJ;
     Tensor<4, 2> result;
     for (unsigned int i = 0; i < 2; ++i)
       for (unsigned int j = 0; j < 2; ++j)
@@ -91,8 +91,10 @@ main()
   check_all_models<2>(prm);
   check_all_models<3>(prm);
 
-  const auto robust = MaterialRegistry<2>::instance().create(
-    "robust neo-Hookean", constants, prm);
+  const auto robust
+    = MaterialRegistry<2>::instance().create("robust neo-Hookean",
+                                             constants,
+                                             prm);
   tissuefem_tests::Random random(7);
   Tensor<1, 2>            fibre({1., 0.});
   double                  difference = 0;
@@ -114,12 +116,12 @@ main()
           for (unsigned int j = 0; j < 2; ++j)
             for (unsigned int m = 0; m < 2; ++m)
               difference = std::max(difference,
-                                    std::abs(teran[i][k][j][m] - A[i][k][j][m]) /
-                                      constants.mu);
+                                    std::abs(teran[i][k][j][m] - A[i][k][j][m])
+                                      / constants.mu);
     }
-  tissuefem_tests::check_small(
-    difference,
-    1e-12,
-    "2D robust neo-Hookean: AD tangent vs problem session eq 20 (relative to mu)");
+  tissuefem_tests::check_small(difference,
+                               1e-12,
+                               "2D robust neo-Hookean: AD tangent vs problem "
+                               "session eq 20 (relative to mu)");
   return tissuefem_tests::exit_status();
 }

@@ -1,11 +1,11 @@
 // Newton's method converges quadratically on the problem session's 2D example
 // (robust neo-Hookean square, u = (sin t, sin t) on X1 = +-1, backward
-// Euler). One large step (dt = 0.1) from rest, starting from the rigid translation,, so that several iterations lie
-// above round-off. With an exact Jacobian the observed order
-// p_k = log(r_{k+1}/r_k) / log(r_k/r_{k-1}) of the residual norms r_k must
-// approach 2; a wrong tangent shows p = 1.
-// The same step is repeated with the hand-coded tangent: the converged
-// displacements must agree to the Newton tolerance.
+// Euler). One large step (dt = 0.1) from rest, starting from the rigid
+// translation,, so that several iterations lie above round-off. With an exact
+// Jacobian the observed order p_k = log(r_{k+1}/r_k) / log(r_k/r_{k-1}) of the
+// residual norms r_k must approach 2; a wrong tangent shows p = 1. The same
+// step is repeated with the hand-coded tangent: the converged displacements
+// must agree to the Newton tolerance.
 
 #include <deal.II/base/parameter_handler.h>
 
@@ -52,21 +52,23 @@ namespace
     geometry::build_triangulation(geometry_parameters, triangulation);
     materials::MaterialParameters material_parameters;
     material_parameters.parse_parameters(prm);
-    materials::MaterialSet<2> materials(material_parameters, prm);
+    materials::MaterialSet<2>    materials(material_parameters, prm);
     boundary::BoundaryParameters boundary_parameters;
     boundary_parameters.parse_parameters(prm);
     boundary::BoundaryConditions<2> boundary_conditions(boundary_parameters);
-    solid::FiniteElementParameters fe_parameters;
+    solid::FiniteElementParameters  fe_parameters;
     fe_parameters.parse_parameters(prm);
-    solid::Discretization<2> discretization(triangulation, fe_parameters, 2);
-    solid::SolidSystem<2>    system(discretization, materials, boundary_conditions);
+    solid::Discretization<2>  discretization(triangulation, fe_parameters, 2);
+    solid::SolidSystem<2>     system(discretization,
+                                 materials,
+                                 boundary_conditions);
     solvers::NewtonParameters newton_parameters;
     newton_parameters.parse_parameters(prm);
     solvers::LinearSolverParameters linear_parameters;
     linear_parameters.parse_parameters(prm);
     solvers::LinearSolver linear_solver(linear_parameters);
 
-    const double dt = 0.1;
+    const double   dt = 0.1;
     Vector<double> u_tilde(system.n_dofs());
     // Initial guess: the rigid translation by the boundary displacement,
     // a guess from which Newton's convergence is local.
@@ -101,7 +103,9 @@ main()
   double best_order = 0;
   for (unsigned int k = 1; k + 1 < r.size(); ++k)
     if (r[k + 1] > 1e-12 * r[0])
-      best_order = std::max(best_order, std::log(r[k + 1] / r[k]) / std::log(r[k] / r[k - 1]));
+      best_order
+        = std::max(best_order,
+                   std::log(r[k + 1] / r[k]) / std::log(r[k] / r[k - 1]));
   tissuefem_tests::check(best_order > 1.8,
                          "observed order of convergence exceeds 1.8",
                          "order " + std::to_string(best_order));
@@ -111,8 +115,9 @@ main()
   prm.leave_subsection();
   one_step(prm, u_hand);
   u_hand -= u_ad;
-  tissuefem_tests::check_small(u_hand.linfty_norm() / u_ad.linfty_norm(),
-                               1e-10,
-                               "hand-coded and AD tangents give the same step (relative)");
+  tissuefem_tests::check_small(
+    u_hand.linfty_norm() / u_ad.linfty_norm(),
+    1e-10,
+    "hand-coded and AD tangents give the same step (relative)");
   return tissuefem_tests::exit_status();
 }

@@ -15,8 +15,9 @@ namespace tissuefem
   {
   public:
     explicit InputError(const std::string &message)
-      : std::runtime_error(message)
-    {}
+        : std::runtime_error(message)
+    {
+    }
   };
 
   /**
@@ -28,8 +29,9 @@ namespace tissuefem
   {
   public:
     explicit SolverError(const std::string &message)
-      : std::runtime_error(message)
-    {}
+        : std::runtime_error(message)
+    {
+    }
   };
 
   /// Throws InputError "Parameter 'name': message" unless @p condition holds.

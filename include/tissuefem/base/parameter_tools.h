@@ -3,9 +3,11 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/function_parser.h>
 #include <deal.II/base/point.h>
+#include <deal.II/base/types.h>
 
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace tissuefem
@@ -22,6 +24,18 @@ namespace tissuefem
    */
   std::vector<std::string>
   split_entries(const std::string &text);
+
+  /// A boundary id 0..254 from @p text; InputError naming @p parameter
+  /// otherwise.
+  types::boundary_id
+  parse_boundary_id(const std::string &text, const std::string &parameter);
+
+  /**
+   * Entries 'id: rest' separated by '|' (see split_entries()), as pairs of
+   * the boundary id and the trimmed text after the first ':'.
+   */
+  std::vector<std::pair<types::boundary_id, std::string>>
+  parse_id_entries(const std::string &text, const std::string &parameter);
 
   /// The muparser variable names for points in @p dim dimensions plus time.
   std::string

@@ -26,8 +26,8 @@ namespace tissuefem
   class Registry
   {
   public:
-    using Factory =
-      std::function<std::unique_ptr<Interface>(FactoryArguments...)>;
+    using Factory
+      = std::function<std::unique_ptr<Interface>(FactoryArguments...)>;
     using Declarer = std::function<void(dealii::ParameterHandler &)>;
 
     struct Entry
@@ -88,8 +88,8 @@ namespace tissuefem
     {
       const auto it = entries.find(name);
       if (it == entries.end())
-        throw InputError("'" + name + "' is not a known choice; known are: " +
-                         selection_pattern());
+        throw InputError("'" + name + "' is not a known choice; known are: "
+                         + selection_pattern());
       return it->second.create(arguments...);
     }
 

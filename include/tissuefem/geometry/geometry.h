@@ -21,8 +21,8 @@ namespace tissuefem::geometry
     void
     parse_parameters(ParameterHandler &prm);
 
-    std::string  source;     ///< "box" or "file"
-    std::string  cell_type;  ///< "hypercube" or "simplex"
+    std::string  source;    ///< "box" or "file"
+    std::string  cell_type; ///< "hypercube" or "simplex"
     std::string  lower_corner, upper_corner, subdivisions;
     std::string  mesh_file;
     double       scale;

@@ -30,8 +30,8 @@ namespace tissuefem::materials
     double      stress_taylor_slope;
     /// max |Psi(QF) - Psi(F)| and |P(QF) - Q P(F)| over random rotations Q;
     /// negative when the model is not meant to be frame indifferent.
-    double      frame_indifference;
-    bool        inverted_samples;
+    double frame_indifference;
+    bool   inverted_samples;
 
     /// Whether every figure is within the tolerances of passes().
     bool

@@ -24,19 +24,21 @@ namespace tissuefem::materials
   {
   public:
     Corotational(const ElasticConstants &constants, const ParameterHandler &)
-      : lambda(constants.lambda)
-      , mu(constants.mu)
-    {}
+        : lambda(constants.lambda)
+        , mu(constants.mu)
+    {
+    }
 
     static void
     declare_parameters(ParameterHandler &)
-    {}
+    {
+    }
 
     template <typename Number>
     Number
     energy(const SmallMatrix<dim, Number> &F, const Tensor<1, dim> &) const
     {
-      const SmallMatrix<dim, Number> R = rotation(F);
+      const SmallMatrix<dim, Number> R        = rotation(F);
       Number                         distance = 0. * F[0][0];
       Number                         tr_RtF   = 0. * F[0][0];
       for (unsigned int i = 0; i < dim; ++i)
@@ -91,20 +93,21 @@ namespace tissuefem::materials
                   {
                     const unsigned int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
                     const unsigned int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
-                    inverse_transpose[i][j] =
-                      (R[i1][j1] * R[i2][j2] - R[i1][j2] * R[i2][j1]) / J;
+                    inverse_transpose[i][j]
+                      = (R[i1][j1] * R[i2][j2] - R[i1][j2] * R[i2][j1]) / J;
                   }
-              const Number g =
-                sqrt(sqrt(first_invariant<dim, Number>(inverse_transpose) /
-                          first_invariant<dim, Number>(R)));
+              const Number g
+                = sqrt(sqrt(first_invariant<dim, Number>(inverse_transpose)
+                            / first_invariant<dim, Number>(R)));
               double change = 0;
               for (unsigned int i = 0; i < 3; ++i)
                 for (unsigned int j = 0; j < 3; ++j)
                   {
-                    const Number next =
-                      0.5 * (g * R[i][j] + inverse_transpose[i][j] / g);
-                    change = std::max(change,
-                                      std::abs(value_of(next) - value_of(R[i][j])));
+                    const Number next
+                      = 0.5 * (g * R[i][j] + inverse_transpose[i][j] / g);
+                    change
+                      = std::max(change,
+                                 std::abs(value_of(next) - value_of(R[i][j])));
                     R[i][j] = next;
                   }
               // Two more sweeps after the values converge let the

@@ -19,26 +19,30 @@ namespace tissuefem::materials
   /// Whether @p Model writes its energy as a function of (I1, J).
   template <typename Model, typename = void>
   struct HasInvariantEnergy : std::false_type
-  {};
+  {
+  };
   template <typename Model>
-  struct HasInvariantEnergy<
-    Model,
-    std::void_t<decltype(std::declval<const Model &>().invariant_energy(0., 0.))>>
-    : std::true_type
-  {};
+  struct HasInvariantEnergy<Model,
+                            std::void_t<decltype(std::declval<const Model &>()
+                                                   .invariant_energy(0., 0.))>>
+      : std::true_type
+  {
+  };
 
   /// Whether @p Model writes its energy in C = F^T F (energy_in_C).
   template <typename Model, int dim, typename = void>
   struct HasEnergyInC : std::false_type
-  {};
+  {
+  };
   template <typename Model, int dim>
-  struct HasEnergyInC<Model,
-                      dim,
-                      std::void_t<decltype(std::declval<const Model &>().energy_in_C(
-                        std::declval<const SmallMatrix<dim, double> &>(),
-                        std::declval<const Tensor<1, dim> &>()))>>
-    : std::true_type
-  {};
+  struct HasEnergyInC<
+    Model,
+    dim,
+    std::void_t<decltype(std::declval<const Model &>().energy_in_C(
+      std::declval<const SmallMatrix<dim, double> &>(),
+      std::declval<const Tensor<1, dim> &>()))>> : std::true_type
+  {
+  };
 
   /**
    * Turns an energy density into a material: @p Model writes
@@ -248,14 +252,14 @@ namespace tissuefem::materials
     {
       using namespace Differentiation;
       constexpr auto number_type = AD::NumberTypes::sacado_dfad_dfad;
-      using Helper   = AD::ScalarFunction<dim, number_type, double>;
-      using ADNumber = typename Helper::ad_type;
+      using Helper               = AD::ScalarFunction<dim, number_type, double>;
+      using ADNumber             = typename Helper::ad_type;
       const FEValuesExtractors::Tensor<2> F_extractor(0);
 
       Helper helper(Tensor<2, dim>::n_independent_components);
       helper.register_independent_variable(F, F_extractor);
-      const Tensor<2, dim, ADNumber> F_ad =
-        helper.get_sensitive_variables(F_extractor);
+      const Tensor<2, dim, ADNumber> F_ad
+        = helper.get_sensitive_variables(F_extractor);
       SmallMatrix<dim, ADNumber> F_small;
       for (unsigned int i = 0; i < dim; ++i)
         for (unsigned int j = 0; j < dim; ++j)
@@ -290,7 +294,7 @@ namespace tissuefem::materials
         for (unsigned int c = 0; c < dim; ++c)
           {
             const int index = a * dim + c;
-            q[a][c] = Outer(n, index, Inner(n, index, Q[a][c]));
+            q[a][c]         = Outer(n, index, Inner(n, index, Q[a][c]));
           }
       // Eq 26: C = -1/2 sum_{j != k} L_jk^2 alpha_j (x) alpha_k, summed over
       // the edges j < k with both orders.
@@ -309,8 +313,9 @@ namespace tissuefem::materials
               }
             for (unsigned int m = 0; m < dim; ++m)
               for (unsigned int l = 0; l < dim; ++l)
-                C[m][l] -= 0.5 * length_squared *
-                           (alpha[j][m] * alpha[k][l] + alpha[k][m] * alpha[j][l]);
+                C[m][l]
+                  -= 0.5 * length_squared
+                     * (alpha[j][m] * alpha[k][l] + alpha[k][m] * alpha[j][l]);
           }
       const Outer W = volume * model().energy_in_C(C, fibre);
       energy        = W.val().val();

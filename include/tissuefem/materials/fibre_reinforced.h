@@ -37,8 +37,8 @@ namespace tissuefem::materials
     energy(const SmallMatrix<dim, Number> &F, const Tensor<1, dim> &a) const
     {
       using std::exp;
-      const Number I4 =
-        quadratic_form<dim, Number>(right_cauchy_green<dim, Number>(F), a);
+      const Number I4
+        = quadratic_form<dim, Number>(right_cauchy_green<dim, Number>(F), a);
       const Number stretch = I4 - 1.;
       Number       fibre   = 0. * stretch;
       if (exponential_law)

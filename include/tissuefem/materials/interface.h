@@ -179,9 +179,9 @@ namespace tissuefem::materials
 } // namespace tissuefem::materials
 
 /// Registers a material model at the end of its source file.
-#define TISSUEFEM_REGISTER_MATERIAL(Model, name, description)            \
-  namespace                                                              \
-  {                                                                      \
-    const bool tissuefem_registered_##Model =                            \
-      ::tissuefem::materials::register_model<Model>(name, description);  \
+#define TISSUEFEM_REGISTER_MATERIAL(Model, name, description)             \
+  namespace                                                               \
+  {                                                                       \
+    const bool tissuefem_registered_##Model                               \
+      = ::tissuefem::materials::register_model<Model>(name, description); \
   }

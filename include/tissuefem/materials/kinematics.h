@@ -64,8 +64,9 @@ namespace tissuefem::materials
                   for (unsigned int l = 0; l < 3; ++l)
                     if (j != l)
                       {
-                        const unsigned int q       = 3 - j - l;
-                        const double       eps_jlq = ((l + 3 - j) % 3 == 1) ? 1. : -1.;
+                        const unsigned int q = 3 - j - l;
+                        const double       eps_jlq
+                          = ((l + 3 - j) % 3 == 1) ? 1. : -1.;
                         A[i][j][k][l] += factor * eps_ikn * eps_jlq * F[n][q];
                       }
               }

@@ -19,13 +19,15 @@ namespace tissuefem::materials
   {
   public:
     LinearElastic(const ElasticConstants &constants, const ParameterHandler &)
-      : lambda(constants.lambda)
-      , mu(constants.mu)
-    {}
+        : lambda(constants.lambda)
+        , mu(constants.mu)
+    {
+    }
 
     static void
     declare_parameters(ParameterHandler &)
-    {}
+    {
+    }
 
     template <typename Number>
     Number

@@ -68,7 +68,7 @@ namespace tissuefem::materials
 
   template <int dim, typename Volume>
   class NeoHookeanFamily
-    : public EnergyMaterial<dim, NeoHookeanFamily<dim, Volume>>
+      : public EnergyMaterial<dim, NeoHookeanFamily<dim, Volume>>
   {
   public:
     NeoHookeanFamily(const ElasticConstants &constants,
@@ -77,7 +77,8 @@ namespace tissuefem::materials
     /// Neither model has parameters beyond the elastic constants.
     static void
     declare_parameters(ParameterHandler &)
-    {}
+    {
+    }
 
     /// Psi in the invariants I1 = tr F^T F and J = det F.
     template <typename Number>

@@ -21,9 +21,9 @@ namespace tissuefem::materials
     else if constexpr (dim == 2)
       return F[0][0] * F[1][1] - F[0][1] * F[1][0];
     else
-      return F[0][0] * (F[1][1] * F[2][2] - F[1][2] * F[2][1]) -
-             F[0][1] * (F[1][0] * F[2][2] - F[1][2] * F[2][0]) +
-             F[0][2] * (F[1][0] * F[2][1] - F[1][1] * F[2][0]);
+      return F[0][0] * (F[1][1] * F[2][2] - F[1][2] * F[2][1])
+             - F[0][1] * (F[1][0] * F[2][2] - F[1][2] * F[2][0])
+             + F[0][2] * (F[1][0] * F[2][1] - F[1][1] * F[2][0]);
   }
 
   /// tr(F^T F) = F_ij F_ij, the first invariant of C = F^T F.

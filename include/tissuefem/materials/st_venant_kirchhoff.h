@@ -18,13 +18,15 @@ namespace tissuefem::materials
   public:
     StVenantKirchhoff(const ElasticConstants &constants,
                       const ParameterHandler &)
-      : lambda(constants.lambda)
-      , mu(constants.mu)
-    {}
+        : lambda(constants.lambda)
+        , mu(constants.mu)
+    {
+    }
 
     static void
     declare_parameters(ParameterHandler &)
-    {}
+    {
+    }
 
     template <typename Number>
     Number

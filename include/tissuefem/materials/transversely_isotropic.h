@@ -19,7 +19,7 @@ namespace tissuefem::materials
    */
   template <int dim>
   class TransverselyIsotropic
-    : public EnergyMaterial<dim, TransverselyIsotropic<dim>>
+      : public EnergyMaterial<dim, TransverselyIsotropic<dim>>
   {
   public:
     TransverselyIsotropic(const ElasticConstants &constants,
@@ -36,8 +36,8 @@ namespace tissuefem::materials
       const SmallMatrix<dim, Number> E  = green_lagrange_from_C<dim, Number>(C);
       const Number                   tr = trace<dim, Number>(E);
       const Number                   Ea = quadratic_form<dim, Number>(E, a);
-      return mu * squared_norm<dim, Number>(E) + 0.5 * lambda * tr * tr +
-             fibre_coefficient * Ea * Ea;
+      return mu * squared_norm<dim, Number>(E) + 0.5 * lambda * tr * tr
+             + fibre_coefficient * Ea * Ea;
     }
 
     template <typename Number>

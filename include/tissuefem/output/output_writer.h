@@ -21,11 +21,11 @@ namespace tissuefem::output
     void
     parse_parameters(ParameterHandler &prm);
 
-    std::string  directory;
-    unsigned int vtu_interval;
-    std::string  probe_points;
-    std::string  summary_file;
-    unsigned int summary_interval;
+    std::string                     directory;
+    unsigned int                    vtu_interval;
+    std::string                     probe_points;
+    std::string                     summary_file;
+    unsigned int                    summary_interval;
     std::vector<types::boundary_id> reaction_boundary_ids;
     bool                            report_rest_shape;
   };
@@ -57,7 +57,7 @@ namespace tissuefem::output
   class OutputWriter
   {
   public:
-    OutputWriter(const OutputParameters       &parameters,
+    OutputWriter(const OutputParameters        &parameters,
                  const solid::SolidSystem<dim> &system);
 
     /// Creates the directory and files.
@@ -76,9 +76,9 @@ namespace tissuefem::output
     summary_line(const std::string &line);
 
   private:
-    OutputParameters                  parameters;
-    const solid::SolidSystem<dim>    &system;
-    std::unique_ptr<Probes<dim>>      probes;
+    OutputParameters               parameters;
+    const solid::SolidSystem<dim> &system;
+    std::unique_ptr<Probes<dim>>   probes;
     std::ofstream statistics_file, probes_file, reactions_file, summary;
     std::vector<std::pair<double, std::string>> pvd_records;
 

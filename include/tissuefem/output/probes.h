@@ -37,8 +37,8 @@ namespace tissuefem::output
     evaluate(const Vector<double> &u) const;
 
   private:
-    std::vector<Point<dim>> locations;
-    const DoFHandler<dim>  &dof_handler;
+    std::vector<Point<dim>>                                     locations;
+    const DoFHandler<dim>                                      &dof_handler;
     std::vector<typename DoFHandler<dim>::active_cell_iterator> cells;
     std::vector<Point<dim>> reference_points;
   };

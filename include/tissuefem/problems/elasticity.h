@@ -38,15 +38,15 @@ namespace tissuefem::problems
     run() override;
 
   private:
-    ParameterHandler                        &prm;
-    geometry::GeometryParameters             geometry_parameters;
-    solid::FiniteElementParameters           fe_parameters;
-    materials::MaterialParameters            material_parameters;
-    boundary::BoundaryParameters             boundary_parameters;
-    time::TimeParameters                     time_parameters;
-    solvers::NewtonParameters                newton_parameters;
-    solvers::LinearSolverParameters          linear_solver_parameters;
-    output::OutputParameters                 output_parameters;
+    ParameterHandler               &prm;
+    geometry::GeometryParameters    geometry_parameters;
+    solid::FiniteElementParameters  fe_parameters;
+    materials::MaterialParameters   material_parameters;
+    boundary::BoundaryParameters    boundary_parameters;
+    time::TimeParameters            time_parameters;
+    solvers::NewtonParameters       newton_parameters;
+    solvers::LinearSolverParameters linear_solver_parameters;
+    output::OutputParameters        output_parameters;
 
     Triangulation<dim>                                 triangulation;
     std::unique_ptr<materials::MaterialSet<dim>>       materials;

@@ -30,14 +30,16 @@ namespace tissuefem::problems
     virtual ~Interface() = default;
 
     virtual void
-    setup() = 0;
+    setup()
+      = 0;
 
     virtual void
-    run() = 0;
+    run()
+      = 0;
   };
 
-  using ProblemRegistry =
-    Registry<Interface, ParameterHandler &, const RunContext &>;
+  using ProblemRegistry
+    = Registry<Interface, ParameterHandler &, const RunContext &>;
 
   /// Creates Problem<dim> for the 'Dimension' read from @p prm.
   template <template <int> class Problem>
@@ -57,15 +59,15 @@ namespace tissuefem::problems
 } // namespace tissuefem::problems
 
 /// Registers a problem template (on dim) at the end of its source file.
-#define TISSUEFEM_REGISTER_PROBLEM(Problem, name, description)             \
-  namespace                                                                \
-  {                                                                        \
-    const bool tissuefem_registered_##Problem = [] {                       \
-      ::tissuefem::problems::ProblemRegistry::instance().add(              \
-        name,                                                              \
-        description,                                                       \
-        &Problem<3>::declare_parameters,                                   \
-        &::tissuefem::problems::create_for_dimension<Problem>);            \
-      return true;                                                         \
-    }();                                                                   \
+#define TISSUEFEM_REGISTER_PROBLEM(Problem, name, description)  \
+  namespace                                                     \
+  {                                                             \
+    const bool tissuefem_registered_##Problem = [] {            \
+      ::tissuefem::problems::ProblemRegistry::instance().add(   \
+        name,                                                   \
+        description,                                            \
+        &Problem<3>::declare_parameters,                        \
+        &::tissuefem::problems::create_for_dimension<Problem>); \
+      return true;                                              \
+    }();                                                        \
   }

@@ -39,9 +39,9 @@ namespace tissuefem::solid
   class SolidSystem
   {
   public:
-    SolidSystem(const Discretization<dim>             &discretization,
-                const materials::MaterialSet<dim>     &materials,
-                boundary::BoundaryConditions<dim>     &boundary_conditions);
+    SolidSystem(const Discretization<dim>         &discretization,
+                const materials::MaterialSet<dim> &materials,
+                boundary::BoundaryConditions<dim> &boundary_conditions);
 
     void
     assemble(const Vector<double> &u,
@@ -146,13 +146,13 @@ namespace tissuefem::solid
     boundary::BoundaryConditions<dim> &boundary_conditions;
     AffineConstraints<double>          constraints;
     /// Empty: distributes into every row (for reaction forces).
-    AffineConstraints<double>          no_constraints;
-    SparsityPattern                    sparsity;
-    SparseMatrix<double>               tangent_matrix;
-    bool                               body_force_present;
+    AffineConstraints<double> no_constraints;
+    SparsityPattern           sparsity;
+    SparseMatrix<double>      tangent_matrix;
+    bool                      body_force_present;
     /// The unit fibre direction at quadrature point q of cell c, stored at
     /// c * n_q + q; empty when no material uses fibres.
-    std::vector<Tensor<1, dim>>        fibres;
+    std::vector<Tensor<1, dim>> fibres;
 
     const Tensor<1, dim> &
     fibre(const unsigned int cell_index, const unsigned int q) const;
@@ -160,12 +160,13 @@ namespace tissuefem::solid
     /// Adds the edge-length element's forces and stiffness (Jeffrey eqs
     /// 19-31) to the cell residual and matrix.
     void
-    add_edge_length_element(const typename DoFHandler<dim>::active_cell_iterator &cell,
-                            const FEValues<dim>             &fe_values,
-                            const std::vector<double>       &u_cell,
-                            const materials::Interface<dim> &material,
-                            Vector<double>                  &cell_rhs,
-                            FullMatrix<double>              *cell_matrix) const;
+    add_edge_length_element(
+      const typename DoFHandler<dim>::active_cell_iterator &cell,
+      const FEValues<dim>                                  &fe_values,
+      const std::vector<double>                            &u_cell,
+      const materials::Interface<dim>                      &material,
+      Vector<double>                                       &cell_rhs,
+      FullMatrix<double>                                   *cell_matrix) const;
 
     void
     assemble_with(const AffineConstraints<double> &row_constraints,

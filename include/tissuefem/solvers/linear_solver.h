@@ -45,7 +45,7 @@ namespace tissuefem::solvers
           const Vector<double>       &b) const;
 
   private:
-    LinearSolverParameters           parameters;
-    std::vector<std::vector<bool>>   constant_modes;
+    LinearSolverParameters         parameters;
+    std::vector<std::vector<bool>> constant_modes;
   };
 } // namespace tissuefem::solvers

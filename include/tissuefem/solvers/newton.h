@@ -30,8 +30,8 @@ namespace tissuefem::solvers
 
   struct NewtonResult
   {
-    bool                converged = false;
-    unsigned int        iterations = 0;
+    bool         converged  = false;
+    unsigned int iterations = 0;
     /// l2 norms of the residual (force units), one per evaluation at an
     /// accepted iterate, starting with the initial guess.
     std::vector<double> residual_norms;

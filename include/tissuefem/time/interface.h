@@ -35,13 +35,20 @@ namespace tissuefem::time
             Vector<double>       &u_tilde,
             Vector<double>       &initial_guess) const = 0;
 
-    /// v_{n+1} from u_{n+1}, u_n and v_n.
+    /// v_{n+1} from u_{n+1}, u_n and v_n. The default is the difference
+    /// quotient (u_{n+1} - u_n)/dt, which backward Euler uses (eq 3a) and
+    /// quasistatics reports.
     virtual void
     velocity(const Vector<double> &u_new,
              const Vector<double> &u_old,
-             const Vector<double> &v_old,
-             const double          dt,
-             Vector<double>       &v_new) const = 0;
+             const Vector<double> & /*v_old*/,
+             const double    dt,
+             Vector<double> &v_new) const
+    {
+      v_new = u_new;
+      v_new -= u_old;
+      v_new /= dt;
+    }
   };
 
   using IntegratorRegistry = Registry<Interface, const ParameterHandler &>;
@@ -64,18 +71,18 @@ namespace tissuefem::time
 /// Registers a time integrator at the end of its source file. @p Class must
 /// be constructible from a ParameterHandler and have a static
 /// declare_parameters(ParameterHandler &).
-#define TISSUEFEM_REGISTER_INTEGRATOR(Class, name, description)              \
-  namespace                                                                  \
-  {                                                                          \
-    const bool tissuefem_registered_##Class = [] {                           \
-      ::tissuefem::time::IntegratorRegistry::instance().add(                 \
-        name,                                                                \
-        description,                                                         \
-        &Class::declare_parameters,                                          \
-        [](const ::dealii::ParameterHandler &prm) {                          \
-          return std::unique_ptr<::tissuefem::time::Interface>(              \
-            std::make_unique<Class>(prm));                                   \
-        });                                                                  \
-      return true;                                                           \
-    }();                                                                     \
+#define TISSUEFEM_REGISTER_INTEGRATOR(Class, name, description) \
+  namespace                                                     \
+  {                                                             \
+    const bool tissuefem_registered_##Class = [] {              \
+      ::tissuefem::time::IntegratorRegistry::instance().add(    \
+        name,                                                   \
+        description,                                            \
+        &Class::declare_parameters,                             \
+        [](const ::dealii::ParameterHandler &prm) {             \
+          return std::unique_ptr<::tissuefem::time::Interface>( \
+            std::make_unique<Class>(prm));                      \
+        });                                                     \
+      return true;                                              \
+    }();                                                        \
   }
