@@ -1,3 +1,5 @@
+#include <deal.II/base/utilities.h>
+
 #include <tissuefem/base/input_error.h>
 #include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/boundary/boundary_conditions.h>
@@ -92,33 +94,36 @@ namespace tissuefem::boundary
   BoundaryConditions<dim>::BoundaryConditions(
     const BoundaryParameters &parameters)
   {
+    // Entries are split at their first colons only, so that expressions
+    // may use muparser's ternary operator 'a ? b : c'.
     const std::string dirichlet_name = "Boundary conditions/Dirichlet";
-    for (const auto &entry : split_entries(parameters.dirichlet))
+    for (const auto &[id, rest] :
+         parse_id_entries(parameters.dirichlet, dirichlet_name))
       {
-        const auto parts = split_and_trim(entry, ':');
-        require(parts.size() == 3,
+        const auto colon = rest.find(':');
+        require(colon != std::string::npos,
                 dirichlet_name,
-                "entry '" + entry + "' is not 'id: components: expressions'");
+                "entry '" + rest + "' for boundary " + std::to_string(id)
+                  + " is not 'components: expressions'");
         dirichlet.push_back(
-          {parse_boundary_id(parts[0], dirichlet_name),
-           parse_mask<dim>(parts[1], dirichlet_name),
-           make_function<dim>(parts[2], dim, dirichlet_name)});
+          {id,
+           parse_mask<dim>(Utilities::trim(rest.substr(0, colon)),
+                           dirichlet_name),
+           make_function<dim>(rest.substr(colon + 1), dim, dirichlet_name)});
       }
 
     const std::string neumann_name = "Boundary conditions/Neumann";
-    for (const auto &entry : split_entries(parameters.neumann))
-      {
-        const auto parts = split_and_trim(entry, ':');
-        require(parts.size() == 2,
-                neumann_name,
-                "entry '" + entry + "' is not 'id: expressions'");
-        neumann.push_back({parse_boundary_id(parts[0], neumann_name),
-                           make_function<dim>(parts[1], dim, neumann_name)});
-      }
+    for (const auto &[id, expressions] :
+         parse_id_entries(parameters.neumann, neumann_name))
+      neumann.push_back(
+        {id, make_function<dim>(expressions, dim, neumann_name)});
 
-    body_force   = make_function<dim>(parameters.body_force,
+    body_force         = make_function<dim>(parameters.body_force,
                                     dim,
                                     "Boundary conditions/Body force");
+    body_force_is_zero = true;
+    for (const auto &expression : split_and_trim(parameters.body_force, ';'))
+      body_force_is_zero = body_force_is_zero && expression == "0";
     const auto g = split_and_trim(parameters.gravity, ',');
     require(g.size() >= dim,
             "Boundary conditions/Gravity",

@@ -66,6 +66,13 @@ namespace tissuefem::geometry
         "> 3'. Each boundary face whose centre (x, y, z) makes the muparser "
         "expression non-zero gets the id; later entries win. Applied after "
         "refinement.");
+      prm.declare_entry(
+        "Material id predicates",
+        "",
+        Patterns::Anything(),
+        "Entries 'id: expression' separated by '|', e.g. '1: x > 0.5'. Each "
+        "cell whose centre makes the expression non-zero gets the material "
+        "id (see 'Materials/Material ids'); later entries win.");
     }
     prm.leave_subsection();
   }
@@ -84,8 +91,18 @@ namespace tissuefem::geometry
     scale                  = prm.get_double("Scale");
     global_refinements     = prm.get_integer("Global refinements");
     boundary_id_predicates = prm.get("Boundary id predicates");
+    material_id_predicates = prm.get("Material id predicates");
     prm.leave_subsection();
     require(scale > 0, "Geometry/Scale", "must be > 0");
+  }
+
+
+  void
+  GeometryParameters::resolve_relative_to(const std::string &directory)
+  {
+    const std::filesystem::path mesh(mesh_file);
+    if (!mesh.empty() && mesh.is_relative())
+      mesh_file = (std::filesystem::path(directory) / mesh).string();
   }
 
 
@@ -152,8 +169,14 @@ namespace tissuefem::geometry
                   }
         }
       else
-        GridGenerator::subdivided_hyper_rectangle(
-          triangulation, repetitions, lower, upper, /*colorize=*/true);
+        {
+          GridGenerator::subdivided_hyper_rectangle(
+            triangulation, repetitions, lower, upper, /*colorize=*/true);
+          // Colorizing also numbers the cells' material ids by octant;
+          // generated boxes are one material unless predicates say else.
+          for (const auto &cell : triangulation.active_cell_iterators())
+            cell->set_material_id(0);
+        }
     }
 
 

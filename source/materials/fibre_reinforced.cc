@@ -26,7 +26,8 @@ namespace tissuefem::materials
     prm.declare_entry("Fibre exponent k2",
                       "1",
                       Patterns::Double(),
-                      "k2 > 0 (dimensionless), for the exponential law.");
+                      "k2 > 0 (dimensionless), for the exponential law (read "
+                      "but unused by the quadratic law).");
     prm.leave_subsection();
   }
 

@@ -109,7 +109,7 @@ namespace tissuefem::materials
         "as functions of x, y, z (the first Dimension of them are read); "
         "normalized to unit "
         "length at every quadrature point, and must not vanish there. Written "
-        "to the VTU output as 'fibre_direction'.");
+        "to the VTU output as the cell fields fibre_x, fibre_y, fibre_z.");
       prm.declare_entry(
         "Formulation",
         "displacement",
@@ -118,7 +118,8 @@ namespace tissuefem::materials
         "form (eqs 19-31), the element energy written through the squared "
         "edge lengths of linear simplices (P1 triangles/tetrahedra only, "
         "models written in C = F^T F: St Venant-Kirchhoff and the "
-        "transversely isotropic one).");
+        "transversely isotropic one; the fibre direction is taken as "
+        "the normalized cell mean, one per element).");
       MaterialRegistry<3>::instance().declare_parameters(prm);
     }
     prm.leave_subsection();

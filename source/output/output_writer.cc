@@ -21,8 +21,8 @@ namespace tissuefem::output
                       "output",
                       Patterns::Anything(),
                       "Directory (relative to the working directory) that "
-                      "receives solution-*.vtu, solution.pvd, statistics.csv "
-                      "and probes.csv; created if missing.");
+                      "receives solution-*.vtu, solution.pvd, statistics.csv, "
+                      "probes.csv and reactions.csv; created if missing.");
     prm.declare_entry("VTU interval",
                       "1",
                       Patterns::Integer(0),
@@ -38,9 +38,11 @@ namespace tissuefem::output
                       "",
                       Patterns::Anything(),
                       "If not empty: a file (relative to the working "
-                      "directory) receiving the probe displacements and "
-                      "elastic energy without timings or iteration counts, "
-                      "for regression tests.");
+                      "directory) receiving the probe displacements, "
+                      "reaction forces and final elastic energy (and the "
+                      "rest-shape report) without timings or iteration "
+                      "counts, for regression tests. Its directory must "
+                      "exist.");
     prm.declare_entry("Reaction boundary ids",
                       "",
                       Patterns::List(Patterns::Integer(0, 254)),
@@ -122,6 +124,15 @@ namespace tissuefem::output
   void
   OutputWriter<dim>::open()
   {
+    // The summary file first: if it cannot be written, nothing is created.
+    if (!parameters.summary_file.empty())
+      {
+        summary.open(parameters.summary_file);
+        require(static_cast<bool>(summary),
+                "Output/Summary file",
+                "cannot write '" + parameters.summary_file + "'");
+        summary << std::setprecision(8);
+      }
     std::error_code error;
     std::filesystem::create_directories(parameters.directory, error);
     require(!error,
@@ -145,14 +156,6 @@ namespace tissuefem::output
           reactions_file << ",F" << coordinate_names[d];
         reactions_file << '\n' << std::flush;
       }
-    if (!parameters.summary_file.empty())
-      {
-        summary.open(parameters.summary_file);
-        require(static_cast<bool>(summary),
-                "Output/Summary file",
-                "cannot write '" + parameters.summary_file + "'");
-        summary << std::setprecision(8);
-      }
   }
 
 
@@ -172,8 +175,10 @@ namespace tissuefem::output
                                 const Vector<double>              &v,
                                 const std::vector<Tensor<1, dim>> &reactions)
   {
-    AssertThrow(u.all_zero() || std::isfinite(u.l2_norm()),
-                ExcMessage("refusing to write a non-finite displacement"));
+    if (!std::isfinite(u.l2_norm()) || !std::isfinite(v.l2_norm()))
+      throw SolverError("non-finite displacement or velocity at t = "
+                        + std::to_string(s.time)
+                        + "; nothing was written for this step");
     if (s.step > 0)
       statistics_file << s.step << ',' << s.time << ',' << s.dt << ','
                       << s.newton_iterations << ',' << s.residual_norm << ','
@@ -186,7 +191,7 @@ namespace tissuefem::output
     for (unsigned int p = 0; p < values.size(); ++p)
       {
         std::ostringstream row;
-        row << s.time << ',' << p;
+        row << std::setprecision(10) << s.time << ',' << p;
         for (unsigned int d = 0; d < dim; ++d)
           row << ',' << probes->points()[p][d];
         for (unsigned int d = 0; d < dim; ++d)
@@ -241,6 +246,10 @@ namespace tissuefem::output
 
     Vector<float> jacobian, von_mises;
     system.cell_fields(u, jacobian, von_mises);
+    if (!std::isfinite(jacobian.l2_norm())
+        || !std::isfinite(von_mises.l2_norm()))
+      throw SolverError("non-finite J or stress at step " + std::to_string(step)
+                        + "; VTU file not written");
     const auto   &triangulation = d.dof_handler.get_triangulation();
     Vector<float> material_id(triangulation.n_active_cells());
     for (const auto &cell : triangulation.active_cell_iterators())

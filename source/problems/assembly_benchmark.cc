@@ -118,10 +118,13 @@ namespace tissuefem::problems
     // A smooth, finite deformation: stretches, shears and a twist.
     Vector<double> u(discretization.dof_handler.n_dofs());
     {
-      auto deformation = make_function<dim>(
-        "0.2*x*y + 0.1*sin(3*z); 0.1*x - 0.15*y*z; 0.05*x*x - 0.1*z",
-        dim,
-        "benchmark deformation");
+      static const char *deformations[]
+        = {"0.2*x*x",
+           "0.2*x*y + 0.1*sin(3*y); 0.1*x - 0.15*y*y",
+           "0.2*x*y + 0.1*sin(3*z); 0.1*x - 0.15*y*z; 0.05*x*x - 0.1*z"};
+      auto deformation = make_function<dim>(deformations[dim - 1],
+                                            dim,
+                                            "benchmark deformation");
       VectorTools::interpolate(*discretization.mapping,
                                discretization.dof_handler,
                                *deformation,
@@ -135,17 +138,23 @@ namespace tissuefem::problems
               << u.size() << " unknowns, model '"
               << material_parameters.model_names[0] << "'\n"
               << std::setw(32) << "tangent" << std::setw(14) << "us per cell"
-              << std::setw(16) << "ratio to hand" << std::setw(34)
-              << "max|K - K_hand| / max|K_hand|"
+              << std::setw(16) << "ratio to first" << std::setw(34)
+              << "max|K - K_first| / max|K_first|"
               << "\n";
 
     std::vector<std::pair<std::string, materials::TangentMethod>> methods
-      = {{"hand coded", materials::TangentMethod::hand_coded},
-         {"automatic differentiation",
+      = {{"automatic differentiation",
           materials::TangentMethod::automatic_differentiation},
          {"automatic differentiation in F",
           materials::TangentMethod::automatic_differentiation_in_F},
          {"deal.II AD helper", materials::TangentMethod::dealii_ad_helper}};
+    {
+      materials::MaterialParameters parameters = material_parameters;
+      materials::MaterialSet<dim>   probe(parameters, prm);
+      if (probe.material(0).has_hand_coded_tangent())
+        methods.insert(methods.begin(),
+                       {"hand coded", materials::TangentMethod::hand_coded});
+    }
 
     double               hand_time = 0;
     SparseMatrix<double> reference;
@@ -171,7 +180,7 @@ namespace tissuefem::problems
           }
         const double per_cell   = 1e6 * best / triangulation.n_active_cells();
         double       difference = 0;
-        if (method == materials::TangentMethod::hand_coded)
+        if (&method == &methods.front().second)
           {
             hand_time = per_cell;
             reference_sparsity.copy_from(

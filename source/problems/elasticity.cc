@@ -17,10 +17,7 @@ namespace tissuefem::problems
       : prm(prm)
   {
     geometry_parameters.parse_parameters(prm);
-    const std::filesystem::path mesh(geometry_parameters.mesh_file);
-    if (!mesh.empty() && mesh.is_relative())
-      geometry_parameters.mesh_file
-        = (std::filesystem::path(context.parameter_directory) / mesh).string();
+    geometry_parameters.resolve_relative_to(context.parameter_directory);
     fe_parameters.parse_parameters(prm);
     material_parameters.parse_parameters(prm);
     boundary_parameters.parse_parameters(prm);
@@ -57,6 +54,21 @@ namespace tissuefem::problems
     system         = std::make_unique<solid::SolidSystem<dim>>(*discretization,
                                                        *materials,
                                                        *boundary_conditions);
+    {
+      // Initial and boundary data must be finite where they are used.
+      Vector<double> u, v;
+      system->initial_state(u, v);
+      require(std::isfinite(u.l2_norm()),
+              "Boundary conditions/Initial displacement",
+              "is not finite at some node");
+      require(std::isfinite(v.l2_norm()),
+              "Boundary conditions/Initial velocity",
+              "is not finite at some node");
+      system->apply_dirichlet_values(0., u);
+      require(std::isfinite(u.l2_norm()),
+              "Boundary conditions/Dirichlet",
+              "is not finite at some boundary node at t = 0");
+    }
     integrator
       = time::IntegratorRegistry::instance().create(time_parameters.integrator,
                                                     prm);

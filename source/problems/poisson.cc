@@ -120,9 +120,10 @@ namespace tissuefem::problems
 
 
   template <int dim>
-  Poisson<dim>::Poisson(ParameterHandler &prm, const RunContext &)
+  Poisson<dim>::Poisson(ParameterHandler &prm, const RunContext &context)
   {
     geometry_parameters.parse_parameters(prm);
+    geometry_parameters.resolve_relative_to(context.parameter_directory);
     fe_parameters.parse_parameters(prm);
     output_parameters.parse_parameters(prm);
     prm.enter_subsection("Poisson");

@@ -5,6 +5,7 @@
 #include <deal.II/fe/mapping_fe.h>
 #include <deal.II/fe/mapping_q.h>
 
+#include <tissuefem/base/input_error.h>
 #include <tissuefem/geometry/geometry.h>
 #include <tissuefem/solid/discretization.h>
 
@@ -17,13 +18,15 @@ namespace tissuefem::solid
     prm.declare_entry("Polynomial degree",
                       "1",
                       Patterns::Integer(1, 3),
-                      "Degree k of the Lagrange elements: Q_k on "
-                      "quadrilaterals/hexahedra, P_k on triangles/tetrahedra.");
+                      "Degree k of the Lagrange elements: Q_k (k = 1..3) on "
+                      "quadrilaterals/hexahedra, P_k (k = 1, 2) on "
+                      "triangles/tetrahedra.");
     prm.declare_entry("Quadrature points",
                       "0",
                       Patterns::Integer(0, 6),
-                      "Gauss points per direction (for simplices: the order "
-                      "of the simplex Gauss rule); 0 chooses degree + 1.");
+                      "Gauss points per direction (for simplices: the "
+                      "simplex Gauss rule with that many points per "
+                      "direction, at most 4); 0 chooses degree + 1.");
     prm.leave_subsection();
   }
 
@@ -50,6 +53,16 @@ namespace tissuefem::solid
       = parameters.quadrature_points > 0 ? parameters.quadrature_points : k + 1;
     if (simplex)
       {
+        // deal.II 9.4 has simplex Lagrange elements up to degree 2 and
+        // simplex Gauss rules up to 4 points per direction.
+        require(k <= 2,
+                "Finite element/Polynomial degree",
+                "must be 1 or 2 on triangles/tetrahedra (deal.II 9.4), got "
+                  + std::to_string(k));
+        require(n_q <= 4,
+                "Finite element/Quadrature points",
+                "must be at most 4 on triangles/tetrahedra, got "
+                  + std::to_string(n_q));
         fe = std::make_unique<FESystem<dim>>(FE_SimplexP<dim>(k), n_components);
         mapping         = std::make_unique<MappingFE<dim>>(FE_SimplexP<dim>(1));
         cell_quadrature = QGaussSimplex<dim>(n_q);

@@ -69,21 +69,9 @@ namespace tissuefem::solid
     sparsity.copy_from(dsp);
     tangent_matrix.reinit(sparsity);
 
-    // Skip evaluating the body force expression at every quadrature point
-    // when it is identically zero at t = 0 and at a few sample points.
-    Vector<double> value(dim);
-    body_force_present = false;
-    for (const double t : {0., 0.37, 1.})
-      {
-        boundary_conditions.body_force->set_time(t);
-        for (const auto &cell : dof_handler.active_cell_iterators())
-          {
-            boundary_conditions.body_force->vector_value(cell->center(), value);
-            body_force_present |= value.l2_norm() != 0.;
-            break;
-          }
-      }
-    body_force_present |= boundary_conditions.body_force->n_components != dim;
+    // The body force is evaluated at every quadrature point unless its
+    // expressions are literally zero.
+    body_force_present = !boundary_conditions.body_force_is_zero;
 
     if (materials.edge_length_formulation())
       require(discretization.simplex && discretization.fe->degree == 1,
@@ -102,9 +90,21 @@ namespace tissuefem::solid
         for (const auto &cell : dof_handler.active_cell_iterators())
           {
             fe_values.reinit(cell);
+            Tensor<1, dim> mean;
             for (unsigned int q = 0; q < n_q; ++q)
-              fibres[cell->active_cell_index() * n_q + q]
-                = materials.fibre_direction(fe_values.quadrature_point(q));
+              {
+                fibres[cell->active_cell_index() * n_q + q]
+                  = materials.fibre_direction(fe_values.quadrature_point(q));
+                mean += fibres[cell->active_cell_index() * n_q + q];
+              }
+            // The edge-length element has one fibre per element; use the
+            // same (normalized mean) direction at every quadrature point so
+            // that energies and stresses reported afterwards belong to the
+            // problem solved.
+            if (materials.edge_length_formulation() && mean.norm() > 0)
+              for (unsigned int q = 0; q < n_q; ++q)
+                fibres[cell->active_cell_index() * n_q + q]
+                  = mean / mean.norm();
           }
       }
   }
@@ -488,8 +488,12 @@ namespace tissuefem::solid
         Tensor<2, dim>       deviator = sigma;
         for (unsigned int d = 0; d < dim; ++d)
           deviator[d][d] -= mean;
+        // In 1D the only stress is uniaxial, whose von Mises value is
+        // |sigma|; in 2D the in-plane (2 x 2) stress is used.
         von_mises[cell->active_cell_index()]
-          += std::sqrt(1.5 * scalar_product(deviator, deviator)) / n_q;
+          += (dim == 1 ? std::abs(sigma[0][0])
+                       : std::sqrt(1.5 * scalar_product(deviator, deviator)))
+             / n_q;
       });
   }
 

@@ -90,8 +90,11 @@ namespace tissuefem::solvers
       }
     catch (const ExceptionBase &e)
       {
+        std::string reason = one_line_message(e);
+        if (reason.size() > 160)
+          reason = reason.substr(0, 157) + "...";
         throw SolverError("linear solver (" + parameters.type
-                          + ") failed: " + one_line_message(e));
+                          + ") failed: " + reason);
       }
   }
 } // namespace tissuefem::solvers

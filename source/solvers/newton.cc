@@ -35,7 +35,8 @@ namespace tissuefem::solvers
                       "8",
                       Patterns::Integer(0, 50),
                       "Halvings of the Newton update tried while the residual "
-                      "norm does not decrease; 0 takes full steps.");
+                      "norm does not decrease; the last one is taken even if "
+                      "it does not. 0 takes full steps.");
     prm.declare_entry("Verbose",
                       "false",
                       Patterns::Bool(),
@@ -130,7 +131,15 @@ namespace tissuefem::solvers
         rhs = residual;
         rhs *= -1.;
         const auto start = Clock::now();
-        solve_jacobian(update, rhs);
+        try
+          {
+            solve_jacobian(update, rhs);
+          }
+        catch (const SolverError &e)
+          {
+            result.failure = e.what();
+            return result;
+          }
         result.solve_seconds += seconds_since(start);
         ++result.iterations;
 

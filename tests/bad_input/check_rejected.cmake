@@ -1,5 +1,6 @@
 # Runs tissuefem on an input that must fail, in an empty directory, and
-# checks that it fails cleanly: a non-zero exit, one line on stderr naming the
+# checks that it fails cleanly: exit status EXPECTED_STATUS (2: bad input,
+# 3: solver failure), one line on stderr naming the
 # culprit, and no files written; or, with ALLOW_FILES (a run that starts and
 # then fails in the solver), no "nan" in any file written.
 file(REMOVE_RECURSE ${WORKDIR})
@@ -9,8 +10,8 @@ execute_process(COMMAND ${TISSUEFEM} ${INPUT}
   RESULT_VARIABLE status
   OUTPUT_VARIABLE out
   ERROR_VARIABLE err)
-if(status EQUAL 0)
-  message(FATAL_ERROR "tissuefem accepted a bad input (exit 0)")
+if(NOT status EQUAL EXPECTED_STATUS)
+  message(FATAL_ERROR "exit status ${status}, expected ${EXPECTED_STATUS}: ${err}")
 endif()
 string(STRIP "${err}" err)
 string(FIND "${err}" "\n" newline)
@@ -22,7 +23,9 @@ if(found EQUAL -1)
   message(FATAL_ERROR "error message '${err}' does not name '${EXPECTED}'")
 endif()
 if(ALLOW_FILES)
-  file(GLOB_RECURSE written ${WORKDIR}/*.csv ${WORKDIR}/*.vtu ${WORKDIR}/*.pvd)
+  # CSV files are plain text; VTU data are compressed, and the writer refuses
+  # to write non-finite fields (it stops with a solver error instead).
+  file(GLOB_RECURSE written ${WORKDIR}/*.csv)
   foreach(f ${written})
     file(STRINGS ${f} nan_lines REGEX "[Nn][Aa][Nn]")
     if(nan_lines)

@@ -61,6 +61,8 @@ namespace tissuefem::boundary
     std::vector<Neumann>   neumann;
     /// Force per unit reference volume (N/m^3 if SI), added to rho_0 * gravity.
     std::unique_ptr<FunctionParser<dim>> body_force;
+    /// Whether every body force expression is the literal "0".
+    bool body_force_is_zero;
     /// Acceleration of gravity (m/s^2 if SI); multiplied by rho_0.
     Tensor<1, dim>                       gravity;
     std::unique_ptr<FunctionParser<dim>> initial_displacement;

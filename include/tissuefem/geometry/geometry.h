@@ -21,6 +21,11 @@ namespace tissuefem::geometry
     void
     parse_parameters(ParameterHandler &prm);
 
+    /// Makes a relative 'Mesh file' relative to @p directory (the
+    /// parameter file's).
+    void
+    resolve_relative_to(const std::string &directory);
+
     std::string  source;    ///< "box" or "file"
     std::string  cell_type; ///< "hypercube" or "simplex"
     std::string  lower_corner, upper_corner, subdivisions;
@@ -28,15 +33,18 @@ namespace tissuefem::geometry
     double       scale;
     unsigned int global_refinements;
     std::string  boundary_id_predicates;
+    std::string  material_id_predicates;
   };
 
   /**
    * Builds the reference configuration. A generated box has boundary ids
-   * 0/1 on the faces x = lower/upper, 2/3 on y, 4/5 on z. Meshes read from a
-   * file keep the ids the file carries (0 where it carries none). Then each
-   * 'Boundary id predicates' entry "id: expression" assigns its id to every
-   * boundary face whose centre satisfies the muparser expression of x, y, z,
-   * in the order given. Throws InputError on any problem.
+   * 0/1 on the faces x = lower/upper, 2/3 on y, 4/5 on z, and material id 0.
+   * Meshes read from a file keep the ids the file carries (0 where it
+   * carries none). Then each 'Boundary id predicates' entry "id: expression"
+   * assigns its id to every boundary face whose centre satisfies the
+   * muparser expression of x, y, z, in the order given, and likewise
+   * 'Material id predicates' for cell centres. Throws InputError on any
+   * problem.
    */
   template <int dim>
   void

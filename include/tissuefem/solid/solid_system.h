@@ -90,7 +90,8 @@ namespace tissuefem::solid
     /**
      * Per-cell averages over quadrature points of J = det F and of the von
      * Mises equivalent of the Cauchy stress sigma = P F^T / J (computed from
-     * the dim x dim stress: sqrt(3/2 dev(sigma) : dev(sigma))).
+     * the dim x dim stress: sqrt(3/2 dev(sigma) : dev(sigma)); in 1D |sigma|;
+     * in 2D the out-of-plane stress is not included).
      */
     void
     cell_fields(const Vector<double> &u,
