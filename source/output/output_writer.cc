@@ -175,7 +175,7 @@ namespace tissuefem::output
                                 const Vector<double>              &v,
                                 const std::vector<Tensor<1, dim>> &reactions)
   {
-    if (!std::isfinite(u.l2_norm()) || !std::isfinite(v.l2_norm()))
+    if (!all_finite(u) || !all_finite(v))
       throw SolverError("non-finite displacement or velocity at t = "
                         + std::to_string(s.time)
                         + "; nothing was written for this step");
@@ -246,8 +246,7 @@ namespace tissuefem::output
 
     Vector<float> jacobian, von_mises;
     system.cell_fields(u, jacobian, von_mises);
-    if (!std::isfinite(jacobian.l2_norm())
-        || !std::isfinite(von_mises.l2_norm()))
+    if (!all_finite(jacobian) || !all_finite(von_mises))
       throw SolverError("non-finite J or stress at step " + std::to_string(step)
                         + "; VTU file not written");
     const auto   &triangulation = d.dof_handler.get_triangulation();

@@ -1,6 +1,7 @@
 #include <deal.II/base/timer.h>
 #include <deal.II/dofs/dof_tools.h>
 
+#include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/problems/elasticity.h>
 
 #include <algorithm>
@@ -58,14 +59,14 @@ namespace tissuefem::problems
       // Initial and boundary data must be finite where they are used.
       Vector<double> u, v;
       system->initial_state(u, v);
-      require(std::isfinite(u.l2_norm()),
+      require(all_finite(u),
               "Boundary conditions/Initial displacement",
               "is not finite at some node");
-      require(std::isfinite(v.l2_norm()),
+      require(all_finite(v),
               "Boundary conditions/Initial velocity",
               "is not finite at some node");
       system->apply_dirichlet_values(0., u);
-      require(std::isfinite(u.l2_norm()),
+      require(all_finite(u),
               "Boundary conditions/Dirichlet",
               "is not finite at some boundary node at t = 0");
     }

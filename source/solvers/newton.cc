@@ -1,4 +1,5 @@
 #include <tissuefem/base/input_error.h>
+#include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/solvers/newton.h>
 
 #include <chrono>
@@ -102,7 +103,7 @@ namespace tissuefem::solvers
         result.failure = e.what();
         return result;
       }
-    double norm = residual.l2_norm();
+    double norm = checked_l2_norm(residual);
     result.residual_norms.push_back(norm);
     const double first_norm = norm;
 
@@ -157,7 +158,7 @@ namespace tissuefem::solvers
                 // step is almost always accepted, and then it is the one the
                 // next iteration needs.
                 timed_assemble(trial, trial_residual, true);
-                const double trial_norm = trial_residual.l2_norm();
+                const double trial_norm = checked_l2_norm(trial_residual);
                 if (std::isfinite(trial_norm)
                     && (trial_norm < norm
                         || parameters.max_line_search_steps == 0
@@ -182,16 +183,16 @@ namespace tissuefem::solvers
         result.failure.clear();
         u        = trial;
         residual = trial_residual;
-        norm     = residual.l2_norm();
+        norm     = checked_l2_norm(residual);
         result.residual_norms.push_back(norm);
         if (parameters.verbose)
           std::cout << "    Newton " << result.iterations << ": |R| = " << norm
-                    << ", |du| = " << update.l2_norm() << ", step " << alpha
-                    << std::endl;
+                    << ", |du| = " << checked_l2_norm(update) << ", step "
+                    << alpha << std::endl;
 
         if (alpha == 1
-            && update.l2_norm()
-                 <= parameters.update_tolerance * (1 + u.l2_norm()))
+            && checked_l2_norm(update)
+                 <= parameters.update_tolerance * (1 + checked_l2_norm(u)))
           {
             result.converged = std::isfinite(norm);
             return result;

@@ -5,6 +5,8 @@
 #include <deal.II/base/point.h>
 #include <deal.II/base/types.h>
 
+#include <cmath>
+#include <limits>
 #include <memory>
 #include <string>
 #include <utility>
@@ -67,6 +69,27 @@ namespace tissuefem
   /// one line.
   std::string
   one_line_message(const ExceptionBase &exception);
+
+  /// Whether every entry of @p v is finite. (deal.II's Vector::l2_norm()
+  /// asserts finiteness in Debug mode, so it cannot serve as the check.)
+  template <typename VectorType>
+  bool
+  all_finite(const VectorType &v)
+  {
+    for (const auto x : v)
+      if (!std::isfinite(x))
+        return false;
+    return true;
+  }
+
+  /// The l2 norm of @p v, or NaN if any entry is not finite.
+  template <typename VectorType>
+  double
+  checked_l2_norm(const VectorType &v)
+  {
+    return all_finite(v) ? double(v.l2_norm())
+                         : std::numeric_limits<double>::quiet_NaN();
+  }
 
   /// Collapses new lines and runs of white space into single spaces.
   std::string
