@@ -185,6 +185,33 @@ namespace tissuefem
   }
 
 
+  std::string
+  leading_entries(const std::string &text,
+                  const char         separator,
+                  const unsigned int n)
+  {
+    std::vector<std::string> pieces = split_and_trim(text, separator);
+    if (pieces.size() > n)
+      pieces.resize(n);
+    std::string result;
+    for (const auto &piece : pieces)
+      result += (result.empty() ? "" : std::string(1, separator) + " ") + piece;
+    return result;
+  }
+
+
+  template <int dim>
+  Point<dim>
+  parse_leading_point(const std::string &text, const std::string &parameter)
+  {
+    require(split_and_trim(text, ',').size() >= dim,
+            parameter,
+            "needs at least " + std::to_string(dim) + " coordinates, got '"
+              + text + "'");
+    return parse_point<dim>(leading_entries(text, ',', dim), parameter);
+  }
+
+
   template <int dim>
   std::vector<Point<dim>>
   parse_points(const std::string &text, const std::string &parameter)
@@ -230,12 +257,14 @@ namespace tissuefem
   }
 
 
-#define TISSUEFEM_INSTANTIATE(dim)                                        \
-  template std::unique_ptr<FunctionParser<dim>> make_function<dim>(       \
-    const std::string &, const unsigned int, const std::string &);        \
-  template Point<dim>              parse_point<dim>(const std::string &,  \
-                                       const std::string &); \
-  template std::vector<Point<dim>> parse_points<dim>(const std::string &, \
+#define TISSUEFEM_INSTANTIATE(dim)                                                \
+  template std::unique_ptr<FunctionParser<dim>> make_function<dim>(               \
+    const std::string &, const unsigned int, const std::string &);                \
+  template Point<dim>              parse_point<dim>(const std::string &,          \
+                                       const std::string &);         \
+  template Point<dim>              parse_leading_point<dim>(const std::string &,  \
+                                               const std::string &); \
+  template std::vector<Point<dim>> parse_points<dim>(const std::string &,         \
                                                      const std::string &);
   TISSUEFEM_INSTANTIATE(1)
   TISSUEFEM_INSTANTIATE(2)

@@ -124,14 +124,8 @@ namespace tissuefem::boundary
     body_force_is_zero = true;
     for (const auto &expression : split_and_trim(parameters.body_force, ';'))
       body_force_is_zero = body_force_is_zero && expression == "0";
-    const auto g = split_and_trim(parameters.gravity, ',');
-    require(g.size() >= dim,
-            "Boundary conditions/Gravity",
-            "needs " + std::to_string(dim) + " components");
-    std::string leading;
-    for (unsigned int d = 0; d < dim; ++d)
-      leading += (d ? "," : "") + g[d];
-    gravity = parse_point<dim>(leading, "Boundary conditions/Gravity");
+    gravity = parse_leading_point<dim>(parameters.gravity,
+                                       "Boundary conditions/Gravity");
 
     initial_displacement
       = make_function<dim>(parameters.initial_displacement,

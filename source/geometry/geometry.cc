@@ -109,32 +109,15 @@ namespace tissuefem::geometry
   namespace
   {
     template <int dim>
-    Point<dim>
-    leading_coordinates(const std::string &text, const std::string &parameter)
-    {
-      std::vector<std::string> pieces = split_and_trim(text, ',');
-      require(pieces.size() >= dim,
-              parameter,
-              "needs at least " + std::to_string(dim) + " coordinates, got '"
-                + text + "'");
-      pieces.resize(dim);
-      std::string joined;
-      for (const auto &p : pieces)
-        joined += (joined.empty() ? "" : ",") + p;
-      return parse_point<dim>(joined, parameter);
-    }
-
-
-    template <int dim>
     void
     build_box(const GeometryParameters &parameters,
               Triangulation<dim>       &triangulation)
     {
       const Point<dim> lower
-        = leading_coordinates<dim>(parameters.lower_corner,
+        = parse_leading_point<dim>(parameters.lower_corner,
                                    "Geometry/Lower corner");
       const Point<dim> upper
-        = leading_coordinates<dim>(parameters.upper_corner,
+        = parse_leading_point<dim>(parameters.upper_corner,
                                    "Geometry/Upper corner");
       for (unsigned int d = 0; d < dim; ++d)
         require(upper[d] > lower[d],

@@ -145,20 +145,6 @@ namespace tissuefem::materials
       return values;
     }
 
-    /// The first @p n of the ';'-separated expressions in @p text (all of
-    /// them if there are fewer), so 3D defaults serve lower dimensions.
-    std::string
-    leading_components(const std::string &text, const unsigned int n)
-    {
-      std::vector<std::string> pieces = split_and_trim(text, ';');
-      if (pieces.size() > n)
-        pieces.resize(n);
-      std::string result;
-      for (const auto &p : pieces)
-        result += (result.empty() ? "" : "; ") + p;
-      return result;
-    }
-
     std::vector<double>
     read_doubles(ParameterHandler &prm, const std::string &name, unsigned n)
     {
@@ -230,10 +216,10 @@ namespace tissuefem::materials
   MaterialSet<dim>::MaterialSet(const MaterialParameters &parameters,
                                 const ParameterHandler   &prm)
       : method(parameters.tangent_method)
-      , fibre(make_function<dim>(leading_components(parameters.fibre_direction,
-                                                    dim),
-                                 dim,
-                                 "Materials/Fibre direction"))
+      , fibre(make_function<dim>(
+          leading_entries(parameters.fibre_direction, ';', dim),
+          dim,
+          "Materials/Fibre direction"))
       , edge_length(parameters.edge_length_formulation)
   {
     for (unsigned int i = 0; i < parameters.model_names.size(); ++i)
@@ -300,16 +286,6 @@ namespace tissuefem::materials
     return entry(id).density;
   }
 
-
-  template <int dim>
-  bool
-  MaterialSet<dim>::all_admit_inversion() const
-  {
-    for (const auto &[id, e] : entries)
-      if (!e.model->admits_inversion())
-        return false;
-    return true;
-  }
 
   template <int dim>
   bool

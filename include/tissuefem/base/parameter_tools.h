@@ -60,6 +60,21 @@ namespace tissuefem
   Point<dim>
   parse_point(const std::string &text, const std::string &parameter);
 
+  /**
+   * The first @p n pieces of @p text separated by @p separator, joined again
+   * (all of them if there are fewer), so that 3D-shaped values and defaults
+   * serve lower dimensions.
+   */
+  std::string
+  leading_entries(const std::string &text,
+                  const char         separator,
+                  const unsigned int n);
+
+  /// A point from the first @p dim of at least @p dim coordinates "x, y, z".
+  template <int dim>
+  Point<dim>
+  parse_leading_point(const std::string &text, const std::string &parameter);
+
   /// Points separated by ';', each parsed by parse_point().
   template <int dim>
   std::vector<Point<dim>>

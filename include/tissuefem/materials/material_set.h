@@ -59,10 +59,6 @@ namespace tissuefem::materials
       return method;
     }
 
-    /// Whether every material accepts det F <= 0.
-    bool
-    all_admit_inversion() const;
-
     /// Whether any material depends on the fibre direction.
     bool
     any_uses_fibres() const;

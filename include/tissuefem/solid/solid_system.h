@@ -72,12 +72,6 @@ namespace tissuefem::solid
       return tangent_matrix;
     }
 
-    const AffineConstraints<double> &
-    update_constraints() const
-    {
-      return constraints;
-    }
-
     /// Sets the Dirichlet degrees of freedom of @p u to their values at
     /// @p time.
     void
@@ -115,14 +109,6 @@ namespace tissuefem::solid
     /// The smallest J = det F over all quadrature points.
     double
     min_jacobian(const Vector<double> &u) const;
-
-    /// Whether any material is anisotropic (and fibre_directions() is
-    /// meaningful).
-    bool
-    has_fibres() const
-    {
-      return !fibres.empty();
-    }
 
     /// The cell averages of the unit fibre direction, one vector per
     /// component (empty if no material uses fibres).
