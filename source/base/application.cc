@@ -2,6 +2,7 @@
 
 #include <tissuefem/base/application.h>
 #include <tissuefem/base/input_error.h>
+#include <tissuefem/base/parallel.h>
 #include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/boundary/boundary_conditions.h>
 #include <tissuefem/geometry/geometry.h>
@@ -114,11 +115,20 @@ namespace tissuefem
           reports.push_back(materials::check_consistency<dim>(
             label, *model, parameters.constants[i].mu));
         }
-      materials::print_consistency_table(std::cout, reports);
+      materials::print_consistency_table(parallel_tools::screen(), reports);
       bool all = true;
       for (const auto &r : reports)
         all = all && r.passes();
       return all;
+    }
+
+
+    /// One line on standard error, from process 0 only.
+    void
+    report_error(const std::string &line)
+    {
+      if (parallel_tools::is_root())
+        std::cerr << line << std::endl;
     }
 
 
@@ -140,6 +150,10 @@ namespace tissuefem
            "  tissuefem --print-parameters\n"
            "      list every parameter with its default and documentation.\n"
            "  tissuefem --help | --version\n"
+           "Options for runs:\n"
+           "  --threads N   use at most N threads per process (default: all\n"
+           "                cores of the machine shared among the processes)\n"
+           "Parallel runs: mpirun -np P tissuefem FILE.prm\n"
            "Exit status: 0 on success, 2 for bad input, 3 when the solver\n"
            "fails, 4 for any other error.\n";
     }
@@ -161,20 +175,35 @@ namespace tissuefem
             const std::string &a = args[i];
             if (a == "--help" || a == "-h")
               {
-                print_usage(std::cout);
+                print_usage(parallel_tools::screen());
                 return 0;
               }
             if (a == "--version")
               {
-                std::cout << "tissuefem " << TISSUEFEM_VERSION << std::endl;
+                parallel_tools::screen()
+                  << "tissuefem " << TISSUEFEM_VERSION << std::endl;
                 return 0;
               }
             if (a == "--print-parameters")
               {
                 ParameterHandler prm;
                 declare_all_parameters(prm);
-                prm.print_parameters(std::cout, ParameterHandler::PRM);
+                prm.print_parameters(parallel_tools::screen(),
+                                     ParameterHandler::PRM);
                 return 0;
+              }
+            if (a == "--threads")
+              {
+                if (i + 1 == args.size())
+                  throw InputError("--threads needs a number >= 1");
+                const std::string n = args[++i];
+                if (n.empty()
+                    || n.find_first_not_of("0123456789") != std::string::npos
+                    || n.size() > 4 || std::stoi(n) < 1)
+                  throw InputError("--threads '" + n
+                                   + "': expected a number >= 1");
+                MultithreadInfo::set_thread_limit(std::stoi(n));
+                continue;
               }
             if (a == "--validate")
               validate_only = true;
@@ -198,7 +227,8 @@ namespace tissuefem
           }
         if (file.empty())
           {
-            print_usage(std::cerr);
+            if (parallel_tools::is_root())
+              print_usage(std::cerr);
             return 2;
           }
 
@@ -223,31 +253,37 @@ namespace tissuefem
         if (validate_only)
           {
             problem->setup();
-            std::cout << "tissuefem: '" << file << "' is valid" << std::endl;
+            parallel_tools::screen()
+              << "tissuefem: '" << file << "' is valid" << std::endl;
             return 0;
           }
+        parallel_tools::screen()
+          << "tissuefem: " << parallel_tools::n_processes()
+          << " MPI process(es), " << MultithreadInfo::n_threads()
+          << " thread(s) each" << std::endl;
         problem->run();
         return 0;
       }
+    // Every process meets the same errors (all check the same input and
+    // take part in the same collective operations); process 0 reports.
     catch (const InputError &e)
       {
-        std::cerr << "tissuefem: error: " << e.what() << std::endl;
+        report_error("tissuefem: error: " + std::string(e.what()));
         return 2;
       }
     catch (const SolverError &e)
       {
-        std::cerr << "tissuefem: solver failure: " << e.what() << std::endl;
+        report_error("tissuefem: solver failure: " + std::string(e.what()));
         return 3;
       }
     catch (const ExceptionBase &e)
       {
-        std::cerr << "tissuefem: error: " << one_line_message(e) << std::endl;
+        report_error("tissuefem: error: " + one_line_message(e));
         return 4;
       }
     catch (const std::exception &e)
       {
-        std::cerr << "tissuefem: error: " << squeeze_whitespace(e.what())
-                  << std::endl;
+        report_error("tissuefem: error: " + squeeze_whitespace(e.what()));
         return 4;
       }
   }

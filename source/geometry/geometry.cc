@@ -9,6 +9,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <sstream>
 
 namespace tissuefem::geometry
 {
@@ -65,7 +67,12 @@ namespace tissuefem::geometry
         "Entries 'id: expression' separated by '|', e.g. '1: y < 0.5 | 2: x "
         "> 3'. Each boundary face whose centre (x, y, z) makes the muparser "
         "expression non-zero gets the id; later entries win. Applied after "
-        "refinement.");
+        "refinement. For a mesh file, faces that match no predicate keep "
+        "the id the file gave them, except id 0 (which files without "
+        "boundary ids give every face): those get id 254, which no "
+        "predicate may name, so that a condition on id 0 acts only where a "
+        "predicate (or the file) put 0. A run prints how many faces carry "
+        "each id.");
       prm.declare_entry(
         "Material id predicates",
         "",
@@ -207,10 +214,25 @@ namespace tissuefem::geometry
     template <int dim>
     void
     apply_boundary_predicates(const std::string  &text,
+                              const bool          from_file,
                               Triangulation<dim> &triangulation)
     {
       const std::string parameter = "Geometry/Boundary id predicates";
-      for (const auto &[id, expression] : parse_id_entries(text, parameter))
+      const auto        entries   = parse_id_entries(text, parameter);
+      for (const auto &entry : entries)
+        require(entry.first != unmatched_boundary_id,
+                parameter,
+                "id " + std::to_string(unmatched_boundary_id)
+                  + " is reserved for faces no predicate matches");
+      // A file without boundary ids gives every face id 0; if faces that
+      // no predicate matches kept it, a condition on id 0 would silently
+      // act on them too.
+      if (from_file && !entries.empty())
+        for (const auto &cell : triangulation.active_cell_iterators())
+          for (const auto &face : cell->face_iterators())
+            if (face->at_boundary() && face->boundary_id() == 0)
+              face->set_boundary_id(unmatched_boundary_id);
+      for (const auto &[id, expression] : entries)
         {
           const auto predicate = make_function<dim>(expression, 1, parameter);
           for (const auto &cell : triangulation.active_cell_iterators())
@@ -232,7 +254,26 @@ namespace tissuefem::geometry
     else
       build_box(parameters, triangulation);
     triangulation.refine_global(parameters.global_refinements);
-    apply_boundary_predicates(parameters.boundary_id_predicates, triangulation);
+    apply_boundary_predicates(parameters.boundary_id_predicates,
+                              parameters.source == "file",
+                              triangulation);
+  }
+
+
+  template <int dim>
+  std::string
+  describe_boundary_ids(const Triangulation<dim> &triangulation)
+  {
+    std::map<types::boundary_id, unsigned int> faces;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      for (const auto &face : cell->face_iterators())
+        if (face->at_boundary())
+          ++faces[face->boundary_id()];
+    std::ostringstream text;
+    text << "boundary faces by id:";
+    for (const auto &[id, count] : faces)
+      text << ' ' << int(id) << " (" << count << ")";
+    return text.str();
   }
 
 
@@ -249,6 +290,12 @@ namespace tissuefem::geometry
   build_triangulation<2>(const GeometryParameters &, Triangulation<2> &);
   template void
   build_triangulation<3>(const GeometryParameters &, Triangulation<3> &);
+  template std::string
+  describe_boundary_ids<1>(const Triangulation<1> &);
+  template std::string
+  describe_boundary_ids<2>(const Triangulation<2> &);
+  template std::string
+  describe_boundary_ids<3>(const Triangulation<3> &);
   template bool
   is_simplex_mesh<1>(const Triangulation<1> &);
   template bool

@@ -6,6 +6,7 @@
 #include <tissuefem/base/input_error.h>
 #include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/output/output_writer.h>
+#include <tissuefem/solid/quantities.h>
 
 #include <filesystem>
 #include <iomanip>
@@ -21,8 +22,9 @@ namespace tissuefem::output
                       "output",
                       Patterns::Anything(),
                       "Directory (relative to the working directory) that "
-                      "receives solution-*.vtu, solution.pvd, statistics.csv, "
-                      "probes.csv and reactions.csv; created if missing.");
+                      "receives solution-*.pvtu/.vtu, solution.pvd, "
+                      "statistics.csv, probes.csv and reactions.csv; created "
+                      "if missing.");
     prm.declare_entry("VTU interval",
                       "1",
                       Patterns::Integer(0),
@@ -88,12 +90,12 @@ namespace tissuefem::output
 
 
   template <int dim>
-  OutputWriter<dim>::OutputWriter(const OutputParameters        &parameters,
-                                  const solid::SolidSystem<dim> &system)
+  OutputWriter<dim>::OutputWriter(const OutputParameters  &parameters,
+                                  const solid::Solid<dim> &solid)
       : parameters(parameters)
-      , system(system)
+      , solid(solid)
   {
-    const auto &d = system.get_discretization();
+    const auto &d = solid.get_discretization();
     probes
       = std::make_unique<Probes<dim>>(parse_points<dim>(parameters.probe_points,
                                                         "Output/Probe points"),
@@ -117,6 +119,18 @@ namespace tissuefem::output
               "cannot write '" + path + "'");
       stream << std::setprecision(10);
     }
+
+    /// Writes @p text to @p path whole: into a temporary file, then renamed.
+    template <typename Writer>
+    void
+    write_whole(const std::string &path, const Writer &writer)
+    {
+      {
+        std::ofstream file(path + ".tmp");
+        writer(file);
+      }
+      std::filesystem::rename(path + ".tmp", path);
+    }
   } // namespace
 
 
@@ -124,38 +138,58 @@ namespace tissuefem::output
   void
   OutputWriter<dim>::open()
   {
-    // The summary file first: if it cannot be written, nothing is created.
-    if (!parameters.summary_file.empty())
-      {
-        summary.open(parameters.summary_file);
-        require(static_cast<bool>(summary),
-                "Output/Summary file",
-                "cannot write '" + parameters.summary_file + "'");
-        summary << std::setprecision(8);
-      }
-    std::error_code error;
-    std::filesystem::create_directories(parameters.directory, error);
-    require(!error,
-            "Output/Directory",
-            "cannot create '" + parameters.directory + "': " + error.message());
-    open_or_fail(statistics_file, parameters.directory + "/statistics.csv");
-    statistics_file << "step,time,dt,newton_iterations,final_residual_norm,"
-                       "assembly_seconds,solve_seconds\n";
-    open_or_fail(probes_file, parameters.directory + "/probes.csv");
-    probes_file << "time,probe";
-    for (unsigned int d = 0; d < dim; ++d)
-      probes_file << ',' << coordinate_names[d];
-    for (unsigned int d = 0; d < dim; ++d)
-      probes_file << ',' << displacement_names[d];
-    probes_file << '\n' << std::flush;
-    if (!parameters.reaction_boundary_ids.empty())
-      {
-        open_or_fail(reactions_file, parameters.directory + "/reactions.csv");
-        reactions_file << "time,boundary";
-        for (unsigned int d = 0; d < dim; ++d)
-          reactions_file << ",F" << coordinate_names[d];
-        reactions_file << '\n' << std::flush;
-      }
+    // Process 0 checks and creates; the others learn the outcome, so that
+    // every process fails alike.
+    std::string error;
+    if (parallel_tools::is_root())
+      try
+        {
+          // The summary file first: if it cannot be written, nothing is
+          // created.
+          if (!parameters.summary_file.empty())
+            {
+              summary.open(parameters.summary_file);
+              require(static_cast<bool>(summary),
+                      "Output/Summary file",
+                      "cannot write '" + parameters.summary_file + "'");
+              summary << std::setprecision(8);
+            }
+          std::error_code code;
+          std::filesystem::create_directories(parameters.directory, code);
+          require(!code,
+                  "Output/Directory",
+                  "cannot create '" + parameters.directory
+                    + "': " + code.message());
+          open_or_fail(statistics_file,
+                       parameters.directory + "/statistics.csv");
+          statistics_file
+            << "step,time,dt,newton_iterations,linear_iterations,"
+               "rejected_attempts,final_residual_norm,assembly_seconds,"
+               "solve_seconds,step_seconds\n";
+          open_or_fail(probes_file, parameters.directory + "/probes.csv");
+          probes_file << "time,probe";
+          for (unsigned int d = 0; d < dim; ++d)
+            probes_file << ',' << coordinate_names[d];
+          for (unsigned int d = 0; d < dim; ++d)
+            probes_file << ',' << displacement_names[d];
+          probes_file << '\n' << std::flush;
+          if (!parameters.reaction_boundary_ids.empty())
+            {
+              open_or_fail(reactions_file,
+                           parameters.directory + "/reactions.csv");
+              reactions_file << "time,boundary";
+              for (unsigned int d = 0; d < dim; ++d)
+                reactions_file << ",F" << coordinate_names[d];
+              reactions_file << '\n' << std::flush;
+            }
+        }
+      catch (const InputError &e)
+        {
+          error = e.what();
+        }
+    error = Utilities::MPI::broadcast(parallel_tools::communicator(), error);
+    if (!error.empty())
+      throw InputError(error);
   }
 
 
@@ -170,89 +204,115 @@ namespace tissuefem::output
 
   template <int dim>
   void
-  OutputWriter<dim>::write_step(const StepStatistics              &s,
-                                const Vector<double>              &u,
-                                const Vector<double>              &v,
-                                const std::vector<Tensor<1, dim>> &reactions)
+  OutputWriter<dim>::write_step(const unsigned int         step,
+                                const time::StepReport    &s,
+                                const time::State         &state,
+                                const std::vector<double> &reactions,
+                                const bool                 mesh_changed)
   {
-    if (!all_finite(u) || !all_finite(v))
+    if (!all_finite(state.u) || !all_finite(state.v))
       throw SolverError("non-finite displacement or velocity at t = "
-                        + std::to_string(s.time)
+                        + std::to_string(state.time)
                         + "; nothing was written for this step");
-    if (s.step > 0)
-      statistics_file << s.step << ',' << s.time << ',' << s.dt << ','
-                      << s.newton_iterations << ',' << s.residual_norm << ','
-                      << s.assembly_seconds << ',' << s.solve_seconds
-                      << std::endl;
-
+    const auto &d = solid.get_discretization();
+    if (mesh_changed)
+      probes = std::make_unique<Probes<dim>>(probes->points(),
+                                             *d.mapping,
+                                             d.dof_handler,
+                                             "Output/Probe points");
+    VectorType u, v;
+    d.initialize_vector(u, true);
+    d.initialize_vector(v, true);
+    u = state.u;
+    v = state.v;
     const auto values = probes->evaluate(u);
-    const bool summarize
-      = summary.is_open() && s.step % parameters.summary_interval == 0;
-    for (unsigned int p = 0; p < values.size(); ++p)
-      {
-        std::ostringstream row;
-        row << std::setprecision(10) << s.time << ',' << p;
-        for (unsigned int d = 0; d < dim; ++d)
-          row << ',' << probes->points()[p][d];
-        for (unsigned int d = 0; d < dim; ++d)
-          row << ',' << values[p][d];
-        probes_file << row.str() << '\n';
-        if (summarize)
-          {
-            summary << "t = " << s.time << " probe " << p << " u =";
-            for (unsigned int d = 0; d < dim; ++d)
-              summary << ' ' << values[p][d];
-            summary << '\n';
-          }
-      }
-    probes_file << std::flush;
-    for (unsigned int b = 0; b < reactions.size(); ++b)
-      {
-        reactions_file << s.time << ','
-                       << int(parameters.reaction_boundary_ids[b]);
-        for (unsigned int d = 0; d < dim; ++d)
-          reactions_file << ',' << reactions[b][d];
-        reactions_file << '\n';
-        if (summarize)
-          {
-            summary << "t = " << s.time << " boundary "
-                    << int(parameters.reaction_boundary_ids[b])
-                    << " reaction =";
-            for (unsigned int d = 0; d < dim; ++d)
-              summary << ' ' << reactions[b][d];
-            summary << '\n';
-          }
-      }
-    reactions_file << std::flush;
-    if (summarize)
-      summary << std::flush;
 
-    if (parameters.vtu_interval > 0 && s.step % parameters.vtu_interval == 0)
-      write_vtu(s.step, s.time, u, v);
+    if (parallel_tools::is_root())
+      {
+        if (step > 0)
+          statistics_file << step << ',' << state.time << ',' << s.dt << ','
+                          << s.newton_iterations << ',' << s.linear_iterations
+                          << ',' << s.rejected_attempts << ','
+                          << s.residual_norm << ',' << s.assembly_seconds
+                          << ',' << s.solve_seconds << ',' << s.step_seconds
+                          << std::endl;
+        const bool summarize
+          = summary.is_open() && step % parameters.summary_interval == 0;
+        for (unsigned int p = 0; p < values.size(); ++p)
+          {
+            std::ostringstream row;
+            row << std::setprecision(10) << state.time << ',' << p;
+            for (unsigned int c = 0; c < dim; ++c)
+              row << ',' << probes->points()[p][c];
+            for (unsigned int c = 0; c < dim; ++c)
+              row << ',' << values[p][c];
+            probes_file << row.str() << '\n';
+            if (summarize)
+              {
+                summary << "t = " << state.time << " probe " << p << " u =";
+                for (unsigned int c = 0; c < dim; ++c)
+                  summary << ' ' << values[p][c];
+                summary << '\n';
+              }
+          }
+        probes_file << std::flush;
+        for (unsigned int b = 0; b < parameters.reaction_boundary_ids.size();
+             ++b)
+          {
+            reactions_file << state.time << ','
+                           << int(parameters.reaction_boundary_ids[b]);
+            for (unsigned int c = 0; c < dim; ++c)
+              reactions_file << ',' << reactions[b * dim + c];
+            reactions_file << '\n';
+            if (summarize)
+              {
+                summary << "t = " << state.time << " boundary "
+                        << int(parameters.reaction_boundary_ids[b])
+                        << " reaction =";
+                for (unsigned int c = 0; c < dim; ++c)
+                  summary << ' ' << reactions[b * dim + c];
+                summary << '\n';
+              }
+          }
+        reactions_file << std::flush;
+        if (summarize)
+          summary << std::flush;
+      }
+
+    if (parameters.vtu_interval > 0 && step % parameters.vtu_interval == 0)
+      write_vtu(step, state.time, u, v);
   }
 
 
   template <int dim>
   void
-  OutputWriter<dim>::write_vtu(const unsigned int    step,
-                               const double          time,
-                               const Vector<double> &u,
-                               const Vector<double> &v)
+  OutputWriter<dim>::write_vtu(const unsigned int step,
+                               const double       time,
+                               const VectorType  &u,
+                               const VectorType  &v)
   {
-    const auto &d = system.get_discretization();
+    const auto &d = solid.get_discretization();
     const std::vector<DataComponentInterpretation::DataComponentInterpretation>
       vector_field(dim,
                    DataComponentInterpretation::component_is_part_of_vector);
 
     Vector<float> jacobian, von_mises;
-    system.cell_fields(u, jacobian, von_mises);
-    if (!all_finite(jacobian) || !all_finite(von_mises))
+    solid::cell_fields(
+      d, solid.get_materials(), solid.fibres(), u, jacobian, von_mises);
+    const bool finite = Utilities::MPI::min(
+      (all_finite(jacobian) && all_finite(von_mises)) ? 1 : 0,
+      parallel_tools::communicator());
+    if (!finite)
       throw SolverError("non-finite J or stress at step " + std::to_string(step)
                         + "; VTU file not written");
     const auto   &triangulation = d.dof_handler.get_triangulation();
     Vector<float> material_id(triangulation.n_active_cells());
+    Vector<float> process(triangulation.n_active_cells());
     for (const auto &cell : triangulation.active_cell_iterators())
-      material_id[cell->active_cell_index()] = cell->material_id();
+      {
+        material_id[cell->active_cell_index()] = cell->material_id();
+        process[cell->active_cell_index()]     = cell->subdomain_id();
+      }
 
     DataOut<dim> data_out;
     data_out.attach_dof_handler(d.dof_handler);
@@ -267,28 +327,36 @@ namespace tissuefem::output
     data_out.add_data_vector(jacobian, "J");
     data_out.add_data_vector(von_mises, "von_Mises_Cauchy_stress");
     data_out.add_data_vector(material_id, "material_id");
-    const std::vector<Vector<float>> fibre = system.cell_fibre_directions();
-    static const char *fibre_names[]       = {"fibre_x", "fibre_y", "fibre_z"};
+    data_out.add_data_vector(process, "process");
+    const std::vector<Vector<float>> fibre
+      = solid.fibres().cell_averages(triangulation.n_active_cells());
+    static const char *fibre_names[] = {"fibre_x", "fibre_y", "fibre_z"};
     for (unsigned int c = 0; c < fibre.size(); ++c)
       data_out.add_data_vector(fibre[c], fibre_names[c]);
     data_out.build_patches(*d.mapping, d.fe->degree);
 
-    std::ostringstream name;
-    name << "solution-" << std::setw(5) << std::setfill('0') << step << ".vtu";
-    const std::string path = parameters.directory + "/" + name.str();
-    {
-      std::ofstream file(path + ".tmp");
-      data_out.write_vtu(file);
-    }
-    std::filesystem::rename(path + ".tmp", path);
-
-    pvd_records.emplace_back(time, name.str());
-    const std::string pvd = parameters.directory + "/solution.pvd";
-    {
-      std::ofstream file(pvd + ".tmp");
-      DataOutBase::write_pvd_record(file, pvd_records);
-    }
-    std::filesystem::rename(pvd + ".tmp", pvd);
+    // One piece per process, a .pvtu naming them, and the .pvd series.
+    std::ostringstream base;
+    base << "solution-" << std::setw(5) << std::setfill('0') << step;
+    const unsigned int rank
+      = Utilities::MPI::this_mpi_process(parallel_tools::communicator());
+    const std::string piece = base.str() + "." + std::to_string(rank) + ".vtu";
+    write_whole(parameters.directory + "/" + piece,
+                [&](std::ostream &out) { data_out.write_vtu(out); });
+    if (!parallel_tools::is_root())
+      return;
+    std::vector<std::string> pieces;
+    for (unsigned int p = 0; p < parallel_tools::n_processes(); ++p)
+      pieces.push_back(base.str() + "." + std::to_string(p) + ".vtu");
+    const std::string master = base.str() + ".pvtu";
+    write_whole(parameters.directory + "/" + master, [&](std::ostream &out) {
+      data_out.write_pvtu_record(out, pieces);
+    });
+    pvd_records.emplace_back(time, master);
+    write_whole(parameters.directory + "/solution.pvd",
+                [&](std::ostream &out) {
+                  DataOutBase::write_pvd_record(out, pvd_records);
+                });
   }
 
   template class OutputWriter<1>;

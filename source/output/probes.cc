@@ -42,20 +42,25 @@ namespace tissuefem::output
 
   template <int dim>
   std::vector<Vector<double>>
-  Probes<dim>::evaluate(const Vector<double> &u) const
+  Probes<dim>::evaluate(const VectorType &u) const
   {
     const auto                          &fe = dof_handler.get_fe();
     std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
-    std::vector<Vector<double>>          values;
+    std::vector<double> flat(cells.size() * fe.n_components(), 0.);
     for (unsigned int p = 0; p < cells.size(); ++p)
-      {
-        Vector<double> value(fe.n_components());
-        cells[p]->get_dof_indices(dofs);
-        for (unsigned int i = 0; i < dofs.size(); ++i)
-          value[fe.system_to_component_index(i).first]
-            += u[dofs[i]] * fe.shape_value(i, reference_points[p]);
-        values.push_back(value);
-      }
+      if (cells[p]->is_locally_owned())
+        {
+          cells[p]->get_dof_indices(dofs);
+          for (unsigned int i = 0; i < dofs.size(); ++i)
+            flat[p * fe.n_components() + fe.system_to_component_index(i).first]
+              += u[dofs[i]] * fe.shape_value(i, reference_points[p]);
+        }
+    Utilities::MPI::sum(flat, parallel_tools::communicator(), flat);
+    std::vector<Vector<double>> values(cells.size(),
+                                       Vector<double>(fe.n_components()));
+    for (unsigned int p = 0; p < cells.size(); ++p)
+      for (unsigned int c = 0; c < fe.n_components(); ++c)
+        values[p][c] = flat[p * fe.n_components() + c];
     return values;
   }
 

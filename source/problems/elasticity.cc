@@ -1,14 +1,13 @@
 #include <deal.II/base/timer.h>
-#include <deal.II/dofs/dof_tools.h>
 
 #include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/problems/elasticity.h>
+#include <tissuefem/solid/quantities.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
-#include <filesystem>
 #include <iomanip>
-#include <iostream>
 #include <sstream>
 
 namespace tissuefem::problems
@@ -16,6 +15,10 @@ namespace tissuefem::problems
   template <int dim>
   Elasticity<dim>::Elasticity(ParameterHandler &prm, const RunContext &context)
       : prm(prm)
+      , triangulation(parallel_tools::communicator(),
+                      Triangulation<dim>::limit_level_difference_at_vertices,
+                      /*allow_artificial_cells=*/false,
+                      parallel::shared::Triangulation<dim>::partition_metis)
   {
     geometry_parameters.parse_parameters(prm);
     geometry_parameters.resolve_relative_to(context.parameter_directory);
@@ -52,20 +55,20 @@ namespace tissuefem::problems
     discretization = std::make_unique<solid::Discretization<dim>>(triangulation,
                                                                   fe_parameters,
                                                                   dim);
-    system         = std::make_unique<solid::SolidSystem<dim>>(*discretization,
-                                                       *materials,
-                                                       *boundary_conditions);
+    solid = std::make_unique<solid::Solid<dim>>(*discretization,
+                                                *materials,
+                                                *boundary_conditions);
     {
       // Initial and boundary data must be finite where they are used.
-      Vector<double> u, v;
-      system->initial_state(u, v);
+      VectorType u, v;
+      solid->initial_state(u, v);
       require(all_finite(u),
               "Boundary conditions/Initial displacement",
               "is not finite at some node");
       require(all_finite(v),
               "Boundary conditions/Initial velocity",
               "is not finite at some node");
-      system->apply_dirichlet_values(0., u);
+      solid->apply_dirichlet_values(0., u);
       require(all_finite(u),
               "Boundary conditions/Dirichlet",
               "is not finite at some boundary node at t = 0");
@@ -75,22 +78,16 @@ namespace tissuefem::problems
                                                     prm);
     linear_solver
       = std::make_unique<solvers::LinearSolver>(linear_solver_parameters);
-    if (linear_solver_parameters.type != "direct")
-      {
-        std::vector<std::vector<bool>> modes;
-        DoFTools::extract_constant_modes(discretization->dof_handler,
-                                         ComponentMask(dim, true),
-                                         modes);
-        linear_solver->set_constant_modes(modes);
-      }
+    if (linear_solver_parameters.type == "cg amg")
+      linear_solver->set_near_null_space(discretization->rigid_body_modes());
     const auto present = triangulation.get_boundary_ids();
     for (const auto id : output_parameters.reaction_boundary_ids)
       require(std::find(present.begin(), present.end(), id) != present.end(),
               "Output/Reaction boundary ids",
               "boundary id " + std::to_string(id)
                 + " is on no boundary face of the mesh");
-    writer
-      = std::make_unique<output::OutputWriter<dim>>(output_parameters, *system);
+    writer =
+      std::make_unique<output::OutputWriter<dim>>(output_parameters, *solid);
   }
 
 
@@ -100,117 +97,88 @@ namespace tissuefem::problems
   {
     setup();
     writer->open();
+    auto &screen = parallel_tools::screen();
 
-    std::cout << "tissuefem: " << dim << "D elasticity, "
-              << triangulation.n_active_cells() << " cells, "
-              << system->n_dofs() << " unknowns, element "
-              << discretization->fe->get_name() << ", integrator '"
-              << time_parameters.integrator << "'" << std::endl;
+    screen << "tissuefem: " << dim << "D elasticity, "
+           << triangulation.n_active_cells() << " cells, " << solid->n_dofs()
+           << " unknowns, element " << discretization->fe->get_name()
+           << ", integrator '" << time_parameters.integrator
+           << "', linear solver '" << linear_solver_parameters.type << "'"
+           << "\n"
+           << geometry::describe_boundary_ids(triangulation) << std::endl;
     std::ostringstream header;
     header << "cells " << triangulation.n_active_cells() << " unknowns "
-           << system->n_dofs();
+           << solid->n_dofs();
     writer->summary_line(header.str());
 
-    TimerOutput timer(std::cout, TimerOutput::summary, TimerOutput::wall_times);
-    Vector<double> u, v, u_new, v_new, u_tilde;
-    system->initial_state(u, v);
-    system->apply_dirichlet_values(0., u);
+    TimerOutput timer(screen, TimerOutput::summary, TimerOutput::wall_times);
+    time::Context context{*solid,
+                          time_parameters,
+                          newton_parameters,
+                          *linear_solver};
+    time::State   state;
+    solid->initial_state(state.u, state.v);
+    solid->apply_dirichlet_values(0., state.u);
+    integrator->initialize(context, state);
     const auto &reaction_ids = output_parameters.reaction_boundary_ids;
-    u_tilde                  = u;
     writer->write_step(
-      {0, 0., 0., 0, 0., 0., 0.},
-      u,
-      v,
-      system->reaction_forces(u, u_tilde, 0., 0., reaction_ids));
+      0,
+      time::StepReport(),
+      state,
+      solid->reaction_forces(state.u, state.a, state.time, reaction_ids));
 
     const double end_time = time_parameters.end_time;
-    double       t        = 0;
-    double       dt       = time_parameters.time_step;
     unsigned int step     = 0;
-    while (t < end_time * (1 - 1e-12))
+    while (state.time < end_time * (1 - 1e-12))
       {
-        double                h = std::min(dt, end_time - t);
-        solvers::NewtonResult result;
-        for (unsigned int halvings = 0;; ++halvings)
-          {
-            const double mass_coefficient = integrator->mass_coefficient(h);
-            integrator->predict(u, v, h, u_tilde, u_new);
-            system->apply_dirichlet_values(t + h, u_new);
-            auto assemble
-              = [&](const Vector<double> &x, Vector<double> &r, bool jacobian) {
-                  system->assemble(
-                    x, u_tilde, mass_coefficient, t + h, r, jacobian);
-                };
-            auto solve = [&](Vector<double> &x, const Vector<double> &b) {
-              linear_solver->solve(system->tangent(), x, b);
-            };
-            {
-              TimerOutput::Scope scope(timer, "Newton (assembly + solve)");
-              result = solvers::solve_newton(newton_parameters,
-                                             u_new,
-                                             assemble,
-                                             solve);
-            }
-            if (result.converged)
-              break;
-            std::ostringstream message;
-            message << "Newton failed at t = " << t + h << " with dt = " << h
-                    << ": " << result.failure;
-            if (halvings == time_parameters.max_step_halvings)
-              throw SolverError(message.str() + "; gave up after "
-                                + std::to_string(halvings)
-                                + " step halvings ('Time integration/Maximum "
-                                  "step halvings')");
-            std::cout << "  " << message.str()
-                      << "; retrying with dt = " << h / 2 << std::endl;
-            h /= 2;
-          }
-
-        const auto reactions = system->reaction_forces(
-          u_new, u_tilde, integrator->mass_coefficient(h), t + h, reaction_ids);
-        integrator->velocity(u_new, u, v, h, v_new);
-        u = u_new;
-        v = v_new;
-        t += h;
+        time::StepReport report;
+        {
+          TimerOutput::Scope scope(timer, "time steps (integrator)");
+          const auto         start = std::chrono::steady_clock::now();
+          report                   = integrator->advance(state, end_time);
+          report.step_seconds      = std::chrono::duration<double>(
+                                  std::chrono::steady_clock::now() - start)
+                                  .count();
+        }
         ++step;
-        // After a reduced step, grow back towards the requested step size.
-        dt = std::min(time_parameters.time_step, 2 * h);
-
-        const output::StepStatistics statistics{step,
-                                                t,
-                                                h,
-                                                result.iterations,
-                                                result.residual_norms.back(),
-                                                result.assembly_seconds,
-                                                result.solve_seconds};
-        std::cout << "step " << std::setw(5) << step
-                  << "  t = " << std::setw(10) << t
-                  << "  dt = " << std::setw(10) << h << "  Newton "
-                  << std::setw(2) << result.iterations
-                  << "  |R| = " << std::scientific << std::setprecision(2)
-                  << result.residual_norms.back() << std::defaultfloat
-                  << std::setprecision(6) << std::endl;
         TimerOutput::Scope scope(timer, "output");
-        writer->write_step(statistics, u, v, reactions);
+        const auto         reactions =
+          solid->reaction_forces(state.u, state.a, state.time, reaction_ids);
+        screen << "step " << std::setw(5) << step << "  t = " << std::setw(10)
+               << state.time << "  dt = " << std::setw(10) << report.dt
+               << "  Newton " << std::setw(2) << report.newton_iterations
+               << "  |R| = " << std::scientific << std::setprecision(2)
+               << report.residual_norm << std::defaultfloat
+               << std::setprecision(6) << std::endl;
+        writer->write_step(step, report, state, reactions);
       }
 
+    VectorType u;
+    discretization->initialize_vector(u, true);
+    u = state.u;
     if (output_parameters.report_rest_shape)
       {
         std::ostringstream rest;
         rest << std::setprecision(4) << "distance from rest shape "
-             << system->distance_from_rest_shape(u) << " min J "
-             << system->min_jacobian(u);
+             << solid::distance_from_rest_shape(*discretization, u)
+             << " min J " << solid::min_jacobian(*discretization, u);
         writer->summary_line(rest.str());
-        std::cout << rest.str()
-                  << " (largest vertex distance after the best rigid fit, "
-                     "length units; smallest det F)"
-                  << std::endl;
+        screen << rest.str()
+               << " (largest vertex distance after the best rigid fit, "
+                  "length units; smallest det F)"
+               << std::endl;
       }
     std::ostringstream energy;
     energy << "final elastic energy " << std::setprecision(8)
-           << system->elastic_energy(u);
+           << solid->stored_energy(state.u);
     writer->summary_line(energy.str());
-    std::cout << energy.str() << " (energy units, int Psi dV)" << std::endl;
+    screen << energy.str() << " (energy units, int Psi dV)" << std::endl;
+    const auto &linear = linear_solver->statistics();
+    screen << "linear solver: " << linear.solves << " solves, "
+           << linear.iterations << " Krylov iterations, " << linear.setups
+           << " symbolic factorizations or AMG builds ("
+           << linear.setup_seconds << " s), " << linear.factorizations
+           << " numeric factorizations" << std::endl;
   }
 
   template class Elasticity<1>;

@@ -7,6 +7,7 @@
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/numerics/vector_tools.h>
 
+#include <tissuefem/base/parallel.h>
 #include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/geometry/geometry.h>
 #include <tissuefem/output/output_writer.h>
@@ -286,8 +287,10 @@ namespace tissuefem::problems
     Triangulation<dim> triangulation;
     geometry::build_triangulation(geometry_parameters, triangulation);
 
+    // A serial verification: every process computes the same table, the
+    // first one reports it.
     std::ofstream summary;
-    if (!output_parameters.summary_file.empty())
+    if (!output_parameters.summary_file.empty() && parallel_tools::is_root())
       summary.open(output_parameters.summary_file);
     std::ostringstream table;
     table << "Poisson problem, " << dim << "D, degree " << fe_parameters.degree
@@ -314,7 +317,7 @@ namespace tissuefem::problems
         previous_l2 = l2;
         previous_h1 = h1;
       }
-    std::cout << table.str()
+    parallel_tools::screen() << table.str()
               << "(errors are norms of u_h - u over the domain; rate = "
                  "log2 of the ratio of successive errors, mesh size halved)"
               << std::endl;

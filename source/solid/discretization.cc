@@ -1,9 +1,12 @@
+#include <deal.II/base/function.h>
 #include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_simplex_p.h>
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/mapping_fe.h>
 #include <deal.II/fe/mapping_q.h>
+#include <deal.II/numerics/vector_tools.h>
 
 #include <tissuefem/base/input_error.h>
 #include <tissuefem/geometry/geometry.h>
@@ -78,7 +81,102 @@ namespace tissuefem::solid
         cell_quadrature = QGauss<dim>(n_q);
         face_quadrature = QGauss<dim - 1>(n_q);
       }
+    distribute(nullptr);
+  }
+
+
+  template <int dim>
+  void
+  Discretization<dim>::distribute(
+    const boundary::BoundaryConditions<dim> *boundary_conditions)
+  {
     dof_handler.distribute_dofs(*fe);
+    locally_owned = dof_handler.locally_owned_dofs();
+    DoFTools::extract_locally_relevant_dofs(dof_handler, locally_relevant);
+
+    hanging_node_constraints.clear();
+    hanging_node_constraints.reinit(locally_relevant);
+    DoFTools::make_hanging_node_constraints(dof_handler,
+                                            hanging_node_constraints);
+    hanging_node_constraints.close();
+
+    constraints.clear();
+    constraints.reinit(locally_relevant);
+    DoFTools::make_hanging_node_constraints(dof_handler, constraints);
+    if (boundary_conditions)
+      for (const auto &d : boundary_conditions->dirichlet)
+        VectorTools::interpolate_boundary_values(*mapping,
+                                                 dof_handler,
+                                                 d.id,
+                                                 Functions::ZeroFunction<dim>(
+                                                   fe->n_components()),
+                                                 constraints,
+                                                 d.mask);
+    constraints.close();
+  }
+
+
+  template <int dim>
+  void
+  Discretization<dim>::initialize_vector(VectorType &v,
+                                         const bool  ghosted) const
+  {
+    if (ghosted)
+      v.reinit(locally_owned, locally_relevant, parallel_tools::communicator());
+    else
+      v.reinit(locally_owned, parallel_tools::communicator());
+  }
+
+
+  template <int dim>
+  void
+  Discretization<dim>::initialize_assembly_vector(VectorType &v) const
+  {
+    v.reinit(locally_owned,
+             locally_relevant,
+             parallel_tools::communicator(),
+             /*vector_writable=*/true);
+  }
+
+  template <int dim>
+  std::vector<VectorType>
+  Discretization<dim>::rigid_body_modes() const
+  {
+    std::map<types::global_dof_index, Point<dim>> points;
+    DoFTools::map_dofs_to_support_points(*mapping, dof_handler, points);
+    const unsigned int      n_rotations = dim * (dim - 1) / 2;
+    std::vector<VectorType> modes(dim + n_rotations);
+    for (auto &mode : modes)
+      initialize_vector(mode);
+    // The component of each dof: from the cells (a dof's component is the
+    // same on every cell that has it).
+    std::vector<types::global_dof_index> dofs(fe->n_dofs_per_cell());
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          cell->get_dof_indices(dofs);
+          for (unsigned int i = 0; i < dofs.size(); ++i)
+            if (locally_owned.is_element(dofs[i]))
+              {
+                const unsigned int c = fe->system_to_component_index(i).first;
+                const Point<dim>  &x = points[dofs[i]];
+                modes[c][dofs[i]]    = 1.;
+                // Rotation about axis r maps x to e_r x x.
+                if constexpr (dim == 2)
+                  modes[2][dofs[i]] = (c == 0 ? -x[1] : x[0]);
+                if constexpr (dim == 3)
+                  {
+                    const double rotation[3][3] = {{0, -x[2], x[1]},
+                                                   {x[2], 0, -x[0]},
+                                                   {-x[1], x[0], 0}};
+                    for (unsigned int r = 0; r < 3; ++r)
+                      modes[3 + r][dofs[i]] = rotation[r][c];
+                  }
+              }
+        }
+    for (auto &mode : modes)
+      mode.compress(VectorOperation::insert);
+    return modes;
   }
 
   template class Discretization<1>;

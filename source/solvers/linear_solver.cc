@@ -1,13 +1,22 @@
 #include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/solver_control.h>
-#include <deal.II/lac/sparse_direct.h>
 #include <deal.II/lac/trilinos_precondition.h>
-#include <deal.II/lac/trilinos_sparse_matrix.h>
-#include <deal.II/lac/trilinos_vector.h>
 
 #include <tissuefem/base/input_error.h>
 #include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/solvers/linear_solver.h>
+
+#include <Amesos.h>
+#include <Amesos_BaseSolver.h>
+#include <Epetra_CrsMatrix.h>
+#include <Epetra_LinearProblem.h>
+#include <Epetra_MultiVector.h>
+#include <Teuchos_ParameterList.hpp>
+#include <umfpack.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
 
 namespace tissuefem::solvers
 {
@@ -15,21 +24,35 @@ namespace tissuefem::solvers
   LinearSolverParameters::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Linear solver");
-    prm.declare_entry("Type",
-                      "direct",
-                      Patterns::Selection("direct|cg amg"),
-                      "'direct': UMFPACK sparse LU (robust, default); 'cg "
-                      "amg': conjugate gradients with Trilinos ML algebraic "
-                      "multigrid (large 3D meshes; needs a positive definite "
-                      "Jacobian).");
+    prm.declare_entry(
+      "Type",
+      "direct",
+      Patterns::Selection("direct|MUMPS|KLU|UMFPACK|cg amg"),
+      "How Newton's linear systems are solved. 'direct' or 'MUMPS': parallel "
+      "sparse LU (Trilinos Amesos + MUMPS), the robust default for meshes up "
+      "to some 10^5 unknowns. 'KLU': Amesos' own LU, gathered on one process "
+      "(small meshes). 'UMFPACK': SuiteSparse's LU, one MPI process only. "
+      "All three keep the symbolic analysis across iterations and steps. "
+      "'cg amg': conjugate gradients with Trilinos ML algebraic multigrid "
+      "(rigid-body modes as near-null space), kept across iterations and "
+      "steps: the choice for large 3D meshes and several processes; needs a "
+      "positive definite Jacobian (stable, non-inverted states).");
     prm.declare_entry("Relative tolerance",
                       "1e-10",
                       Patterns::Double(0, 1),
-                      "For 'cg amg': stop when |b - A x| <= tolerance |b|.");
+                      "For 'cg amg': stop when |b - A x| <= tolerance |b| "
+                      "(l2 norms).");
     prm.declare_entry("Maximum iterations",
                       "1000",
                       Patterns::Integer(1),
-                      "For 'cg amg': iteration limit.");
+                      "For 'cg amg': iteration limit per solve.");
+    prm.declare_entry("AMG rebuild factor",
+                      "2",
+                      Patterns::Double(1),
+                      "For 'cg amg': rebuild the multigrid hierarchy when a "
+                      "solve takes more than this times the iterations of "
+                      "the first solve after the last build (or fails); "
+                      "1 rebuilds whenever iterations grow.");
     prm.leave_subsection();
   }
 
@@ -41,60 +64,308 @@ namespace tissuefem::solvers
     type               = prm.get("Type");
     relative_tolerance = prm.get_double("Relative tolerance");
     max_iterations     = prm.get_integer("Maximum iterations");
+    rebuild_factor     = prm.get_double("AMG rebuild factor");
     prm.leave_subsection();
+    if (type == "direct")
+      type = "MUMPS";
     require(relative_tolerance > 0,
             "Linear solver/Relative tolerance",
             "must be > 0");
+    require(type != "UMFPACK" || parallel_tools::n_processes() == 1,
+            "Linear solver/Type",
+            "'UMFPACK' runs on one MPI process only; use 'MUMPS' or 'cg amg' "
+            "with mpirun");
   }
+
+
+  namespace
+  {
+    double
+    seconds_since(const std::chrono::steady_clock::time_point start)
+    {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now()
+                                           - start)
+        .count();
+    }
+  } // namespace
+
+
+  /// The state each kind of solver keeps between solves.
+  class LinearSolver::Implementation
+  {
+  public:
+    // Which matrix object the kept analysis belongs to.
+    const Epetra_CrsMatrix *matrix = nullptr;
+
+    // Amesos (MUMPS, KLU).
+    Epetra_LinearProblem               problem;
+    std::unique_ptr<Amesos_BaseSolver> amesos;
+
+    // UMFPACK.
+    void                         *symbolic = nullptr;
+    void                         *numeric  = nullptr;
+    std::vector<SuiteSparse_long> Ap, Ai;
+    std::vector<double>           Ax;
+
+    // CG + AMG.
+    std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg;
+    std::unique_ptr<Epetra_MultiVector>                modes;
+    std::vector<VectorType>                            mode_vectors;
+    unsigned int                                       reference_iterations = 0;
+
+    ~Implementation()
+    {
+      free_umfpack();
+    }
+
+    void
+    free_umfpack()
+    {
+      if (numeric)
+        umfpack_dl_free_numeric(&numeric);
+      if (symbolic)
+        umfpack_dl_free_symbolic(&symbolic);
+      numeric = symbolic = nullptr;
+    }
+
+    /// The serial matrix in compressed rows, which UMFPACK reads as
+    /// compressed columns of the transpose.
+    void
+    copy_rows(const Epetra_CrsMatrix &A)
+    {
+      const int n = A.NumMyRows();
+      Ap.assign(n + 1, 0);
+      Ai.clear();
+      Ax.clear();
+      std::vector<std::pair<SuiteSparse_long, double>> row;
+      for (int r = 0; r < n; ++r)
+        {
+          int     length;
+          double *values;
+          int    *columns;
+          A.ExtractMyRowView(r, length, values, columns);
+          row.resize(length);
+          for (int k = 0; k < length; ++k)
+            row[k] = {A.ColMap().GID(columns[k]), values[k]};
+          std::sort(row.begin(), row.end());
+          for (const auto &[column, value] : row)
+            {
+              Ai.push_back(column);
+              Ax.push_back(value);
+            }
+          Ap[r + 1] = Ai.size();
+        }
+    }
+  };
 
 
   LinearSolver::LinearSolver(const LinearSolverParameters &parameters)
       : parameters(parameters)
+      , implementation(std::make_unique<Implementation>())
   {
   }
 
 
+  LinearSolver::~LinearSolver() = default;
+
+
   void
-  LinearSolver::set_constant_modes(const std::vector<std::vector<bool>> &modes)
+  LinearSolver::set_near_null_space(const std::vector<VectorType> &modes)
   {
-    constant_modes = modes;
+    implementation->mode_vectors = modes;
+    implementation->amg.reset();
   }
 
 
   void
-  LinearSolver::solve(const SparseMatrix<double> &A,
-                      Vector<double>             &x,
-                      const Vector<double>       &b) const
+  LinearSolver::reset()
   {
+    implementation->matrix = nullptr;
+    implementation->amesos.reset();
+    implementation->free_umfpack();
+    implementation->amg.reset();
+    implementation->modes.reset();
+  }
+
+
+  void
+  LinearSolver::solve(const MatrixType &A, VectorType &x, const VectorType &b)
+  {
+    auto &impl = *implementation;
+    auto &M    = const_cast<Epetra_CrsMatrix &>(A.trilinos_matrix());
+    if (impl.matrix != &M)
+      {
+        reset();
+        impl.matrix = &M;
+      }
+    ++stats.solves;
+    const auto  start = std::chrono::steady_clock::now();
+    std::string failure;
     try
       {
-        if (parameters.type == "direct")
+        if (parameters.type == "MUMPS" || parameters.type == "KLU")
           {
-            SparseDirectUMFPACK lu;
-            lu.initialize(A);
-            lu.vmult(x, b);
-            return;
+            if (!impl.amesos)
+              {
+                impl.problem.SetOperator(&M);
+                Amesos factory;
+                impl.amesos.reset(factory.Create(
+                  parameters.type == "MUMPS" ? "Amesos_Mumps" : "Amesos_Klu",
+                  impl.problem));
+                if (!impl.amesos)
+                  throw SolverError("Amesos has no " + parameters.type);
+                if (impl.amesos->SymbolicFactorization() != 0)
+                  throw SolverError("symbolic factorization failed");
+                ++stats.setups;
+                stats.setup_seconds += seconds_since(start);
+              }
+            impl.problem.SetLHS(&x.trilinos_vector());
+            impl.problem.SetRHS(
+              const_cast<Epetra_MultiVector *>(
+                static_cast<const Epetra_MultiVector *>(&b.trilinos_vector())));
+            if (impl.amesos->NumericFactorization() != 0)
+              throw SolverError("numeric factorization failed (singular "
+                                "Jacobian?)");
+            ++stats.factorizations;
+            if (impl.amesos->Solve() != 0)
+              throw SolverError("triangular solves failed");
           }
-        TrilinosWrappers::SparseMatrix trilinos_matrix;
-        trilinos_matrix.reinit(A);
-        TrilinosWrappers::PreconditionAMG::AdditionalData amg_data;
-        amg_data.elliptic       = true;
-        amg_data.constant_modes = constant_modes;
-        TrilinosWrappers::PreconditionAMG amg;
-        amg.initialize(trilinos_matrix, amg_data);
-        SolverControl            control(parameters.max_iterations,
-                              parameters.relative_tolerance * b.l2_norm());
-        SolverCG<Vector<double>> cg(control);
-        x = 0;
-        cg.solve(A, x, b, amg);
+        else if (parameters.type == "UMFPACK")
+          {
+            impl.copy_rows(M);
+            const SuiteSparse_long n = impl.Ap.size() - 1;
+            double                 control[UMFPACK_CONTROL];
+            umfpack_dl_defaults(control);
+            if (!impl.symbolic)
+              {
+                if (umfpack_dl_symbolic(n,
+                                        n,
+                                        impl.Ap.data(),
+                                        impl.Ai.data(),
+                                        impl.Ax.data(),
+                                        &impl.symbolic,
+                                        control,
+                                        nullptr)
+                    != UMFPACK_OK)
+                  throw SolverError("UMFPACK symbolic analysis failed");
+                ++stats.setups;
+                stats.setup_seconds += seconds_since(start);
+              }
+            if (impl.numeric)
+              umfpack_dl_free_numeric(&impl.numeric);
+            const auto status = umfpack_dl_numeric(impl.Ap.data(),
+                                                   impl.Ai.data(),
+                                                   impl.Ax.data(),
+                                                   impl.symbolic,
+                                                   &impl.numeric,
+                                                   control,
+                                                   nullptr);
+            if (status != UMFPACK_OK)
+              throw SolverError("UMFPACK numeric factorization failed "
+                                "(status "
+                                + std::to_string(status) + ")");
+            ++stats.factorizations;
+            // The rows of A read as columns are A^T: solve its transpose.
+            if (umfpack_dl_solve(UMFPACK_At,
+                                 impl.Ap.data(),
+                                 impl.Ai.data(),
+                                 impl.Ax.data(),
+                                 x.trilinos_vector()[0],
+                                 b.trilinos_vector()[0],
+                                 impl.numeric,
+                                 control,
+                                 nullptr)
+                != UMFPACK_OK)
+              throw SolverError("UMFPACK solve failed");
+          }
+        else
+          {
+            auto build = [&]() {
+              const auto build_start = std::chrono::steady_clock::now();
+              TrilinosWrappers::PreconditionAMG::AdditionalData data;
+              data.elliptic              = true;
+              data.smoother_sweeps       = 2;
+              data.aggregation_threshold = 0.02;
+              Teuchos::ParameterList              list;
+              std::unique_ptr<Epetra_MultiVector> unused;
+              data.set_parameters(list, unused, M);
+              if (!impl.mode_vectors.empty())
+                {
+                  const auto &map = impl.mode_vectors[0].trilinos_vector().Map();
+                  impl.modes      = std::make_unique<Epetra_MultiVector>(
+                    map, impl.mode_vectors.size());
+                  for (unsigned int m = 0; m < impl.mode_vectors.size(); ++m)
+                    for (int i = 0; i < map.NumMyElements(); ++i)
+                      (*impl.modes)[m][i]
+                        = impl.mode_vectors[m].trilinos_vector()[0][i];
+                  list.set("null space: type", "pre-computed");
+                  list.set("null space: dimension",
+                           static_cast<int>(impl.mode_vectors.size()));
+                  list.set("null space: vectors", impl.modes->Values());
+                }
+              impl.amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
+              impl.amg->initialize(A, list);
+              impl.reference_iterations = 0;
+              ++stats.setups;
+              stats.setup_seconds += seconds_since(build_start);
+            };
+            auto cg_solve = [&]() {
+              SolverControl control(parameters.max_iterations,
+                                    parameters.relative_tolerance
+                                      * b.l2_norm());
+              SolverCG<VectorType> cg(control);
+              x = 0;
+              try
+                {
+                  cg.solve(A, x, b, *impl.amg);
+                }
+              catch (const SolverControl::NoConvergence &)
+                {
+                  return std::numeric_limits<unsigned int>::max();
+                }
+              return control.last_step();
+            };
+            if (!impl.amg)
+              build();
+            unsigned int iterations = cg_solve();
+            // A kept hierarchy that has become poor (or fails) is rebuilt
+            // from the current matrix and the solve repeated once.
+            if (iterations == std::numeric_limits<unsigned int>::max()
+                || (impl.reference_iterations > 0
+                    && iterations > parameters.rebuild_factor
+                                      * impl.reference_iterations))
+              {
+                stats.iterations += std::min(iterations,
+                                             parameters.max_iterations);
+                build();
+                iterations = cg_solve();
+              }
+            if (iterations == std::numeric_limits<unsigned int>::max())
+              throw SolverError("CG did not converge in "
+                                + std::to_string(parameters.max_iterations)
+                                + " iterations ('Linear solver/Maximum "
+                                  "iterations')");
+            if (impl.reference_iterations == 0)
+              impl.reference_iterations = std::max(iterations, 1u);
+            stats.iterations += iterations;
+          }
+      }
+    catch (const SolverError &e)
+      {
+        failure = e.what();
       }
     catch (const ExceptionBase &e)
       {
-        std::string reason = one_line_message(e);
-        if (reason.size() > 160)
-          reason = reason.substr(0, 157) + "...";
+        failure = one_line_message(e);
+      }
+    if (!failure.empty())
+      {
+        // A failed factorization or hierarchy is not kept.
+        reset();
+        if (failure.size() > 160)
+          failure = failure.substr(0, 157) + "...";
         throw SolverError("linear solver (" + parameters.type
-                          + ") failed: " + reason);
+                          + ") failed: " + failure);
       }
   }
 } // namespace tissuefem::solvers

@@ -76,19 +76,21 @@ namespace tissuefem::solvers
   NewtonResult
   solve_newton(
     const NewtonParameters &parameters,
-    Vector<double>         &u,
-    const std::function<void(const Vector<double> &, Vector<double> &, bool)>
+    VectorType         &u,
+    const std::function<void(const VectorType &, VectorType &, bool)>
       &assemble,
-    const std::function<void(Vector<double> &, const Vector<double> &)>
+    const std::function<void(VectorType &, const VectorType &)>
       &solve_jacobian)
   {
     using Clock = std::chrono::steady_clock;
     NewtonResult   result;
-    Vector<double> residual(u.size()), update(u.size()), trial(u.size()),
-      trial_residual(u.size()), rhs(u.size());
+    VectorType residual, update, trial, trial_residual, rhs;
+    update.reinit(u);
+    trial.reinit(u);
+    rhs.reinit(u);
 
     auto timed_assemble
-      = [&](const Vector<double> &x, Vector<double> &r, const bool jacobian) {
+      = [&](const VectorType &x, VectorType &r, const bool jacobian) {
           const auto start = Clock::now();
           assemble(x, r, jacobian);
           result.assembly_seconds += seconds_since(start);
@@ -129,8 +131,7 @@ namespace tissuefem::solvers
             return result;
           }
 
-        rhs = residual;
-        rhs *= -1.;
+        rhs.equ(-1., residual);
         const auto start = Clock::now();
         try
           {
@@ -181,8 +182,8 @@ namespace tissuefem::solvers
             return result;
           }
         result.failure.clear();
-        u        = trial;
-        residual = trial_residual;
+        u = trial;
+        residual.swap(trial_residual);
         norm     = checked_l2_norm(residual);
         result.residual_norms.push_back(norm);
         if (parameters.verbose)

@@ -1,4 +1,4 @@
-#include <tissuefem/time/interface.h>
+#include <tissuefem/time/implicit_one_step.h>
 
 namespace tissuefem::time
 {
@@ -6,9 +6,9 @@ namespace tissuefem::time
    * Quasistatics (lecture notes eq 2.11): inertia is neglected, each step
    * solves f_int(u) = f_ext(t_{n+1}) with the boundary data at t_{n+1},
    * starting from the previous equilibrium. The reported velocity is the
-   * difference quotient (u_{n+1} - u_n)/dt.
+   * difference quotient (u_{n+1} - u_n)/dt; the acceleration is zero.
    */
-  class Quasistatic : public Interface
+  class Quasistatic : public ImplicitOneStep
   {
   public:
     explicit Quasistatic(const ParameterHandler &)
@@ -20,6 +20,7 @@ namespace tissuefem::time
     {
     }
 
+  protected:
     double
     mass_coefficient(const double) const override
     {
@@ -27,14 +28,25 @@ namespace tissuefem::time
     }
 
     void
-    predict(const Vector<double> &u_old,
-            const Vector<double> &,
+    predict(const State &old_state,
             const double,
-            Vector<double> &u_tilde,
-            Vector<double> &initial_guess) const override
+            VectorType &u_tilde,
+            VectorType &initial_guess) const override
     {
-      u_tilde       = u_old;
-      initial_guess = u_old;
+      u_tilde       = old_state.u;
+      initial_guess = old_state.u;
+    }
+
+    void
+    finish(const State &old_state,
+           const VectorType &,
+           const double h,
+           State       &new_state) const override
+    {
+      new_state.v = new_state.u;
+      new_state.v -= old_state.u;
+      new_state.v /= h;
+      new_state.a.reinit(new_state.u);
     }
   };
 

@@ -7,6 +7,7 @@
 // step is repeated with the hand-coded tangent: the converged displacements
 // must agree to the Newton tolerance.
 
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
 #include <tissuefem/base/application.h>
@@ -14,7 +15,7 @@
 #include <tissuefem/geometry/geometry.h>
 #include <tissuefem/materials/material_set.h>
 #include <tissuefem/solid/discretization.h>
-#include <tissuefem/solid/solid_system.h>
+#include <tissuefem/solid/solid.h>
 #include <tissuefem/solvers/linear_solver.h>
 #include <tissuefem/solvers/newton.h>
 
@@ -44,7 +45,7 @@ namespace
   )";
 
   solvers::NewtonResult
-  one_step(ParameterHandler &prm, Vector<double> &u)
+  one_step(ParameterHandler &prm, Vector<double> &u_result)
   {
     geometry::GeometryParameters geometry_parameters;
     geometry_parameters.parse_parameters(prm);
@@ -58,39 +59,45 @@ namespace
     boundary::BoundaryConditions<2> boundary_conditions(boundary_parameters);
     solid::FiniteElementParameters  fe_parameters;
     fe_parameters.parse_parameters(prm);
-    solid::Discretization<2>  discretization(triangulation, fe_parameters, 2);
-    solid::SolidSystem<2>     system(discretization,
-                                 materials,
-                                 boundary_conditions);
+    solid::Discretization<2> discretization(triangulation, fe_parameters, 2);
+    solid::Solid<2>          solid(discretization,
+                          materials,
+                          boundary_conditions);
     solvers::NewtonParameters newton_parameters;
     newton_parameters.parse_parameters(prm);
     solvers::LinearSolverParameters linear_parameters;
     linear_parameters.parse_parameters(prm);
     solvers::LinearSolver linear_solver(linear_parameters);
 
-    const double   dt = 0.1;
-    Vector<double> u_tilde(system.n_dofs());
+    const double dt = 0.1;
+    VectorType   u, u_tilde;
+    solid.initialize_vector(u);
+    solid.initialize_vector(u_tilde);
     // Initial guess: the rigid translation by the boundary displacement,
     // a guess from which Newton's convergence is local.
-    u.reinit(system.n_dofs());
     u = std::sin(dt);
-    system.apply_dirichlet_values(dt, u);
-    return solvers::solve_newton(
+    solid.apply_dirichlet_values(dt, u);
+    const auto result = solvers::solve_newton(
       newton_parameters,
       u,
-      [&](const Vector<double> &x, Vector<double> &r, bool jacobian) {
-        system.assemble(x, u_tilde, 1. / (dt * dt), dt, r, jacobian);
+      [&](const VectorType &x, VectorType &r, bool jacobian) {
+        solid.implicit_residual(x, u_tilde, 1. / (dt * dt), dt, r, jacobian);
       },
-      [&](Vector<double> &x, const Vector<double> &b) {
-        linear_solver.solve(system.tangent(), x, b);
+      [&](VectorType &x, const VectorType &b) {
+        linear_solver.solve(solid.jacobian(), x, b);
       });
+    u_result.reinit(u.size());
+    for (unsigned int i = 0; i < u.size(); ++i)
+      u_result[i] = u[i];
+    return result;
   }
 } // namespace
 
 
 int
-main()
+main(int argc, char **argv)
 {
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   ParameterHandler prm;
   declare_all_parameters(prm);
   prm.parse_input_from_string(scene);

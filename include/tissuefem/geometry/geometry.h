@@ -51,6 +51,16 @@ namespace tissuefem::geometry
   build_triangulation(const GeometryParameters &parameters,
                       Triangulation<dim>       &triangulation);
 
+  /// The id that boundary faces of a mesh file get when 'Boundary id
+  /// predicates' is given and none of them matches (see its documentation).
+  constexpr types::boundary_id unmatched_boundary_id = 254;
+
+  /// "boundary faces by id: 0 (12) 1 (12) ...": how many boundary faces
+  /// carry each id.
+  template <int dim>
+  std::string
+  describe_boundary_ids(const Triangulation<dim> &triangulation);
+
   /// Whether the triangulation's cells are simplices (triangles, tets).
   template <int dim>
   bool

@@ -4,7 +4,8 @@
 #include <deal.II/lac/vector.h>
 
 #include <tissuefem/output/probes.h>
-#include <tissuefem/solid/solid_system.h>
+#include <tissuefem/solid/solid.h>
+#include <tissuefem/time/interface.h>
 
 #include <fstream>
 #include <memory>
@@ -30,20 +31,11 @@ namespace tissuefem::output
     bool                            report_rest_shape;
   };
 
-  /// What one time step reports to statistics.csv and the screen.
-  struct StepStatistics
-  {
-    unsigned int step;
-    double       time, dt;
-    unsigned int newton_iterations;
-    double       residual_norm;
-    double       assembly_seconds, solve_seconds;
-  };
-
   /**
    * Writes a run's results into the output directory:
-   * - solution-NNNNN.vtu and solution.pvd: displacement, velocity, J, von
-   *   Mises stress and material id, every 'VTU interval' steps;
+   * - solution-NNNNN.pvtu (one solution-NNNNN.P.vtu piece per MPI
+   *   process) and solution.pvd: displacement, velocity, J, von Mises
+   *   stress, material id and owning process, every 'VTU interval' steps;
    * - statistics.csv: one row per step;
    * - probes.csv: displacement at the probe points, long form, every step;
    * - reactions.csv: force through each 'Reaction boundary ids' boundary;
@@ -52,40 +44,48 @@ namespace tissuefem::output
    * Files are created only by open(), after all input has been checked;
    * every VTU/PVD file is written to a temporary name and renamed, and CSV
    * rows are flushed whole, so an interrupted run leaves no partial file.
+   * Process 0 writes every file but the VTU pieces; every process must call
+   * every function (they gather values).
    */
   template <int dim>
   class OutputWriter
   {
   public:
-    OutputWriter(const OutputParameters        &parameters,
-                 const solid::SolidSystem<dim> &system);
+    OutputWriter(const OutputParameters &parameters,
+                 const solid::Solid<dim> &solid);
 
     /// Creates the directory and files.
     void
     open();
 
-    /// @p reactions holds one force per 'Reaction boundary ids' entry.
+    /**
+     * Writes step @p step (0: the initial state) with what the integrator
+     * reported; @p reactions holds dim components per 'Reaction boundary
+     * ids' entry. Rebuilds the probes if the mesh changed since the last
+     * call (@p mesh_changed).
+     */
     void
-    write_step(const StepStatistics              &statistics,
-               const Vector<double>              &u,
-               const Vector<double>              &v,
-               const std::vector<Tensor<1, dim>> &reactions);
+    write_step(const unsigned int         step,
+               const time::StepReport    &report,
+               const time::State         &state,
+               const std::vector<double> &reactions,
+               const bool                 mesh_changed = false);
 
     /// Writes a free-form line to the summary file (if any).
     void
     summary_line(const std::string &line);
 
   private:
-    OutputParameters               parameters;
-    const solid::SolidSystem<dim> &system;
-    std::unique_ptr<Probes<dim>>   probes;
+    OutputParameters             parameters;
+    const solid::Solid<dim>     &solid;
+    std::unique_ptr<Probes<dim>> probes;
     std::ofstream statistics_file, probes_file, reactions_file, summary;
     std::vector<std::pair<double, std::string>> pvd_records;
 
     void
-    write_vtu(const unsigned int    step,
-              const double          time,
-              const Vector<double> &u,
-              const Vector<double> &v);
+    write_vtu(const unsigned int step,
+              const double       time,
+              const VectorType  &u,
+              const VectorType  &v);
   };
 } // namespace tissuefem::output

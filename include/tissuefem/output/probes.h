@@ -5,6 +5,8 @@
 #include <deal.II/fe/mapping.h>
 #include <deal.II/lac/vector.h>
 
+#include <tissuefem/base/parallel.h>
+
 #include <vector>
 
 namespace tissuefem::output
@@ -32,9 +34,10 @@ namespace tissuefem::output
       return locations;
     }
 
-    /// values[p][c]: component c of @p u at point p.
+    /// values[p][c]: component c of @p u at point p, on every process
+    /// (@p u ghosted; the process owning the point's cell evaluates it).
     std::vector<Vector<double>>
-    evaluate(const Vector<double> &u) const;
+    evaluate(const VectorType &u) const;
 
   private:
     std::vector<Point<dim>>                                     locations;

@@ -1,6 +1,6 @@
 #pragma once
 
-#include <deal.II/grid/tria.h>
+#include <deal.II/distributed/shared_tria.h>
 
 #include <tissuefem/boundary/boundary_conditions.h>
 #include <tissuefem/geometry/geometry.h>
@@ -8,7 +8,7 @@
 #include <tissuefem/output/output_writer.h>
 #include <tissuefem/problems/interface.h>
 #include <tissuefem/solid/discretization.h>
-#include <tissuefem/solid/solid_system.h>
+#include <tissuefem/solid/solid.h>
 #include <tissuefem/solvers/linear_solver.h>
 #include <tissuefem/solvers/newton.h>
 #include <tissuefem/time/interface.h>
@@ -16,10 +16,12 @@
 namespace tissuefem::problems
 {
   /**
-   * A hyperelastic body moving under boundary conditions and loads:
-   * read parameters -> build mesh, materials, boundary conditions -> for
-   * each step: predict, Newton (assemble, solve) -> output. A step whose
-   * Newton iteration fails is retried with half the step size.
+   * A hyperelastic body moving under boundary conditions and loads: read
+   * parameters -> build the scene (mesh, materials, boundary conditions,
+   * solid) -> the chosen integrator advances the state step by step ->
+   * each state goes to output. The mesh is shared by all MPI processes
+   * (parallel::shared::Triangulation, partitioned by METIS); each process
+   * assembles its own cells with several threads.
    */
   template <int dim>
   class Elasticity : public Interface
@@ -48,11 +50,11 @@ namespace tissuefem::problems
     solvers::LinearSolverParameters linear_solver_parameters;
     output::OutputParameters        output_parameters;
 
-    Triangulation<dim>                                 triangulation;
+    parallel::shared::Triangulation<dim>               triangulation;
     std::unique_ptr<materials::MaterialSet<dim>>       materials;
     std::unique_ptr<boundary::BoundaryConditions<dim>> boundary_conditions;
     std::unique_ptr<solid::Discretization<dim>>        discretization;
-    std::unique_ptr<solid::SolidSystem<dim>>           system;
+    std::unique_ptr<solid::Solid<dim>>                 solid;
     std::unique_ptr<time::Interface>                   integrator;
     std::unique_ptr<solvers::LinearSolver>             linear_solver;
     std::unique_ptr<output::OutputWriter<dim>>         writer;

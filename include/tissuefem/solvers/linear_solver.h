@@ -1,9 +1,10 @@
 #pragma once
 
 #include <deal.II/base/parameter_handler.h>
-#include <deal.II/lac/sparse_matrix.h>
-#include <deal.II/lac/vector.h>
 
+#include <tissuefem/base/parallel.h>
+
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -22,30 +23,73 @@ namespace tissuefem::solvers
     std::string  type;
     double       relative_tolerance;
     unsigned int max_iterations;
+    double       rebuild_factor;
+  };
+
+  /// What the solver did since it was created.
+  struct LinearSolverStatistics
+  {
+    unsigned int solves = 0;
+    /// Krylov iterations summed over solves (0 for direct solvers).
+    unsigned int iterations = 0;
+    /// Symbolic factorizations or AMG hierarchies built.
+    unsigned int setups = 0;
+    /// Numeric factorizations (direct solvers).
+    unsigned int factorizations = 0;
+    double       setup_seconds = 0;
   };
 
   /**
-   * Solves the Newton systems: UMFPACK's sparse LU, or conjugate gradients
-   * preconditioned by Trilinos ML algebraic multigrid (for symmetric positive
-   * definite Jacobians, i.e. away from instabilities).
+   * Solves the Newton systems J du = -R. Choices ('Linear solver/Type'):
+   * - MUMPS (default, 'direct' is the same): parallel sparse LU through
+   *   Trilinos Amesos; the symbolic analysis is done once per sparsity
+   *   pattern and kept across Newton iterations and steps;
+   * - KLU: Amesos' serial LU (the matrix is gathered on one process);
+   *   symbolic analysis kept as for MUMPS;
+   * - UMFPACK: SuiteSparse's LU, one process only; symbolic analysis kept;
+   * - cg amg: conjugate gradients preconditioned by Trilinos ML algebraic
+   *   multigrid whose near-null space is the rigid-body modes. The
+   *   hierarchy is built once and kept across Newton iterations and steps
+   *   while it works: it is rebuilt when a solve needs more than
+   *   'AMG rebuild factor' times the iterations of the first solve after
+   *   the last build, or fails.
+   * After the mesh changes, call reset().
    */
   class LinearSolver
   {
   public:
     explicit LinearSolver(const LinearSolverParameters &parameters);
+    ~LinearSolver();
 
-    /// Near-null-space vectors for AMG (one mask per displacement component).
+    /// Near-null-space vectors for AMG (rigid-body modes), distributed like
+    /// the unknowns.
     void
-    set_constant_modes(const std::vector<std::vector<bool>> &modes);
+    set_near_null_space(const std::vector<VectorType> &modes);
 
-    /// Solves A x = b; throws SolverError if the solver fails.
+    /// Forgets factorizations and preconditioners (the matrix layout
+    /// changed).
     void
-    solve(const SparseMatrix<double> &A,
-          Vector<double>             &x,
-          const Vector<double>       &b) const;
+    reset();
+
+    /**
+     * Solves A x = b for a matrix whose sparsity pattern is that of the
+     * previous call unless reset() was called. Throws SolverError if the
+     * solver fails. @p values_changed false reuses the last factorization
+     * or preconditioner as is.
+     */
+    void
+    solve(const MatrixType &A, VectorType &x, const VectorType &b);
+
+    const LinearSolverStatistics &
+    statistics() const
+    {
+      return stats;
+    }
 
   private:
-    LinearSolverParameters         parameters;
-    std::vector<std::vector<bool>> constant_modes;
+    class Implementation;
+    LinearSolverParameters          parameters;
+    std::unique_ptr<Implementation> implementation;
+    LinearSolverStatistics          stats;
   };
 } // namespace tissuefem::solvers

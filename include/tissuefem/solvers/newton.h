@@ -2,7 +2,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/lac/affine_constraints.h>
-#include <deal.II/lac/vector.h>
+#include <tissuefem/base/parallel.h>
 
 #include <functional>
 #include <string>
@@ -53,9 +53,9 @@ namespace tissuefem::solvers
   NewtonResult
   solve_newton(
     const NewtonParameters &parameters,
-    Vector<double>         &u,
-    const std::function<void(const Vector<double> &, Vector<double> &, bool)>
+    VectorType         &u,
+    const std::function<void(const VectorType &, VectorType &, bool)>
       &assemble,
-    const std::function<void(Vector<double> &, const Vector<double> &)>
+    const std::function<void(VectorType &, const VectorType &)>
       &solve_jacobian);
 } // namespace tissuefem::solvers

@@ -1,59 +1,20 @@
 #pragma once
 
 #include <deal.II/base/parameter_handler.h>
-#include <deal.II/lac/vector.h>
 
+#include <tissuefem/base/parallel.h>
 #include <tissuefem/base/registry.h>
+#include <tissuefem/solid/operators.h>
+#include <tissuefem/solvers/linear_solver.h>
+#include <tissuefem/solvers/newton.h>
+
+#include <vector>
 
 namespace tissuefem::time
 {
   using namespace dealii;
 
-  /**
-   * A one-step time integrator for M a + f_int(u) = f_ext, written so that
-   * each step is the nonlinear system
-   *
-   *   c M (u - u_tilde) + f_int(u) - f_ext(t_{n+1}) = 0
-   *
-   * for u = u_{n+1}: the integrator supplies c, u_tilde and the initial
-   * guess, and the new velocity once u is known.
-   */
-  class Interface
-  {
-  public:
-    virtual ~Interface() = default;
-
-    /// The coefficient c of the mass term for step size @p dt.
-    virtual double
-    mass_coefficient(const double dt) const = 0;
-
-    /// Fills u_tilde and the Newton initial guess from (u_n, v_n).
-    virtual void
-    predict(const Vector<double> &u_old,
-            const Vector<double> &v_old,
-            const double          dt,
-            Vector<double>       &u_tilde,
-            Vector<double>       &initial_guess) const = 0;
-
-    /// v_{n+1} from u_{n+1}, u_n and v_n. The default is the difference
-    /// quotient (u_{n+1} - u_n)/dt, which backward Euler uses (eq 3a) and
-    /// quasistatics reports.
-    virtual void
-    velocity(const Vector<double> &u_new,
-             const Vector<double> &u_old,
-             const Vector<double> & /*v_old*/,
-             const double    dt,
-             Vector<double> &v_new) const
-    {
-      v_new = u_new;
-      v_new -= u_old;
-      v_new /= dt;
-    }
-  };
-
-  using IntegratorRegistry = Registry<Interface, const ParameterHandler &>;
-
-  /// The 'Time integration' subsection.
+  /// The 'Time integration' subsection (what every integrator reads).
   struct TimeParameters
   {
     static void
@@ -66,6 +27,80 @@ namespace tissuefem::time
     double       time_step;
     unsigned int max_step_halvings;
   };
+
+  /// The state of the body at one instant: displacement, velocity and
+  /// acceleration (distributed vectors), at time t.
+  struct State
+  {
+    double     time = 0;
+    VectorType u, v, a;
+  };
+
+  /// What one step did, for statistics.csv and the screen.
+  struct StepReport
+  {
+    double       dt                = 0;
+    unsigned int newton_iterations = 0;
+    unsigned int linear_iterations = 0;
+    /// Attempts thrown away (step halvings, rejected error estimates).
+    unsigned int rejected_attempts = 0;
+    /// l2 norm of the final nodal residual (force units); 0 for explicit
+    /// methods.
+    double residual_norm    = 0;
+    double assembly_seconds = 0;
+    double solve_seconds    = 0;
+    /// Wall time of the whole step (set by the caller of advance()).
+    double step_seconds = 0;
+  };
+
+  /// What an integrator works with: the solid's operators and the solvers.
+  struct Context
+  {
+    solid::Operators                &solid;
+    const TimeParameters            &time;
+    const solvers::NewtonParameters &newton;
+    solvers::LinearSolver           &linear_solver;
+  };
+
+  /**
+   * A time integrator owns the step: from the state at t it chooses a step
+   * h (at most up to @p end_time), computes the state at t + h by driving
+   * the solid's operators (residuals and Jacobians for implicit methods,
+   * internal forces and lumped masses for explicit ones), and returns what
+   * it did. Nothing outside the integrator knows how it steps.
+   */
+  class Interface
+  {
+  public:
+    virtual ~Interface() = default;
+
+    /// Called once before the first step, with the initial state (u, v set
+    /// and satisfying the boundary conditions at its time); may set a.
+    virtual void
+    initialize(Context &context, State &state) = 0;
+
+    /// Advances @p state by one step, not beyond @p end_time. Throws
+    /// SolverError when it cannot.
+    virtual StepReport
+    advance(State &state, const double end_time) = 0;
+
+    /// Vectors the integrator keeps besides the state (older steps), which
+    /// must be transferred when the mesh changes.
+    virtual std::vector<VectorType *>
+    history()
+    {
+      return {};
+    }
+
+    /// Called after the mesh changed and the state and history() were
+    /// transferred: drop whatever depended on the old mesh.
+    virtual void
+    mesh_changed()
+    {
+    }
+  };
+
+  using IntegratorRegistry = Registry<Interface, const ParameterHandler &>;
 } // namespace tissuefem::time
 
 /// Registers a time integrator at the end of its source file. @p Class must

@@ -1,0 +1,112 @@
+#pragma once
+
+#include <deal.II/base/index_set.h>
+
+#include <tissuefem/base/parallel.h>
+
+#include <string>
+#include <vector>
+
+namespace tissuefem::solid
+{
+  using namespace dealii;
+
+  /**
+   * What a discretized hyperelastic solid offers a time integrator, for
+   * the semi-discrete equations of motion
+   *
+   *   M a + f_int(u) = f_ext(t),   u = g(t) on the Dirichlet boundary,
+   *
+   * with M the mass matrix (consistent, or lumped by row sums), f_int_a =
+   * int P(F) : grad N_a dV and f_ext_a = int (rho_0 g + b) N_a dV + int h
+   * N_a dA (problem session eqs 1-2, lecture notes eq 2.11). Every vector
+   * is distributed over the processes (locally owned entries); the class
+   * makes ghosted copies itself. Independent of the space dimension, so
+   * that integrators are written once.
+   *
+   * Constrained degrees of freedom (Dirichlet components, hanging nodes)
+   * are handled here: residuals have zero rows there, Jacobians unit
+   * diagonals, so that Newton updates obey homogeneous constraints.
+   */
+  class Operators
+  {
+  public:
+    virtual ~Operators() = default;
+
+    /// A vector laid out like the unknowns (zero).
+    virtual void
+    initialize_vector(VectorType &v) const = 0;
+
+    virtual types::global_dof_index
+    n_dofs() const = 0;
+
+    /// Sets the constrained entries of @p u: Dirichlet values at @p time,
+    /// hanging nodes from their parents.
+    virtual void
+    apply_dirichlet_values(const double time, VectorType &u) const = 0;
+
+    /// Sets every constrained entry of @p v to zero (for increments).
+    virtual void
+    zero_constrained_entries(VectorType &v) const = 0;
+
+    /// The initial displacement and velocity of the scene.
+    virtual void
+    initial_state(VectorType &u, VectorType &v) const = 0;
+
+    /**
+     * The residual of one implicit step,
+     *   R(u) = c M (u - u_tilde) + f_int(u) - f_ext(t),
+     * with the consistent mass, and on request its Jacobian c M + K(u)
+     * (kept in jacobian()). c = 0 is quasistatics. Throws SolverError
+     * (InvertedElementError) for states the model cannot evaluate.
+     */
+    virtual void
+    implicit_residual(const VectorType &u,
+                      const VectorType &u_tilde,
+                      const double      mass_coefficient,
+                      const double      time,
+                      VectorType       &residual,
+                      const bool        with_jacobian) = 0;
+
+    /// The Jacobian of the last implicit_residual() call that asked for it.
+    virtual MatrixType &
+    jacobian() = 0;
+
+    /// f_int(u) alone (no matrix): what explicit methods evaluate. Rows of
+    /// constrained degrees of freedom are included.
+    virtual void
+    internal_force(const VectorType &u, VectorType &force) = 0;
+
+    /// f_ext(t) (rows of constrained degrees of freedom included).
+    virtual void
+    external_force(const double time, VectorType &force) = 0;
+
+    /// The consistent mass matrix, assembled on first use.
+    virtual const MatrixType &
+    mass_matrix() = 0;
+
+    /// The row-sum lumped mass (one entry per degree of freedom).
+    virtual const VectorType &
+    lumped_mass() = 0;
+
+    /// int Psi(F(u)) dV (energy units).
+    virtual double
+    stored_energy(const VectorType &u) const = 0;
+
+    /// 1/2 v^T M v with the consistent mass (energy units).
+    virtual double
+    kinetic_energy(const VectorType &v) = 0;
+
+    /**
+     * The force each boundary in @p boundary_ids applies to the body, for
+     * a state (u, a) at @p time: the sum over that boundary's degrees of
+     * freedom of M a + f_int(u) - f_ext(t), without constraints; dim
+     * components per boundary, one after the other (force units).
+     */
+    virtual std::vector<double>
+    reaction_forces(const VectorType                      &u,
+                    const VectorType                      &acceleration,
+                    const double                           time,
+                    const std::vector<types::boundary_id> &boundary_ids) = 0;
+  };
+} // namespace tissuefem::solid

@@ -1,0 +1,160 @@
+#pragma once
+
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+
+#include <tissuefem/base/input_error.h>
+#include <tissuefem/boundary/boundary_conditions.h>
+#include <tissuefem/materials/material_set.h>
+#include <tissuefem/solid/cell_cache.h>
+#include <tissuefem/solid/discretization.h>
+#include <tissuefem/solid/fibre_field.h>
+#include <tissuefem/solid/operators.h>
+
+#include <optional>
+
+namespace tissuefem::solid
+{
+  /// Thrown when an element inverts (det F <= 0) in a model whose energy is
+  /// undefined there; a time integrator may retry with a smaller step.
+  class InvertedElementError : public SolverError
+  {
+  public:
+    using SolverError::SolverError;
+  };
+
+  /**
+   * A hyperelastic solid discretized by finite elements: the Operators an
+   * integrator drives, assembled cell by cell over the locally owned cells
+   * by several threads (deal.II's WorkStream) and added into distributed
+   * Trilinos objects. The per-cell geometry is cached (CellCache), so that
+   * repeated assemblies do element arithmetic only.
+   *
+   * After the mesh changes, call setup() again; every state vector must be
+   * transferred by the caller (see problems::MeshAdaptation).
+   */
+  template <int dim>
+  class Solid : public Operators
+  {
+  public:
+    Solid(Discretization<dim>               &discretization,
+          const materials::MaterialSet<dim> &materials,
+          boundary::BoundaryConditions<dim> &boundary_conditions);
+
+    /// Distributes dofs, builds constraints, the matrix and the caches for
+    /// the current mesh.
+    void
+    setup();
+
+    void
+    initialize_vector(VectorType &v) const override;
+
+    types::global_dof_index
+    n_dofs() const override
+    {
+      return discretization.n_dofs();
+    }
+
+    void
+    apply_dirichlet_values(const double time, VectorType &u) const override;
+
+    void
+    zero_constrained_entries(VectorType &v) const override;
+
+    void
+    initial_state(VectorType &u, VectorType &v) const override;
+
+    void
+    implicit_residual(const VectorType &u,
+                      const VectorType &u_tilde,
+                      const double      mass_coefficient,
+                      const double      time,
+                      VectorType       &residual,
+                      const bool        with_jacobian) override;
+
+    MatrixType &
+    jacobian() override
+    {
+      return jacobian_matrix;
+    }
+
+    void
+    internal_force(const VectorType &u, VectorType &force) override;
+
+    void
+    external_force(const double time, VectorType &force) override;
+
+    const MatrixType &
+    mass_matrix() override;
+
+    const VectorType &
+    lumped_mass() override;
+
+    double
+    stored_energy(const VectorType &u) const override;
+
+    double
+    kinetic_energy(const VectorType &v) override;
+
+    std::vector<double>
+    reaction_forces(const VectorType                      &u,
+                    const VectorType                      &acceleration,
+                    const double                           time,
+                    const std::vector<types::boundary_id> &boundary_ids)
+      override;
+
+    const Discretization<dim> &
+    get_discretization() const
+    {
+      return discretization;
+    }
+
+    const materials::MaterialSet<dim> &
+    get_materials() const
+    {
+      return materials;
+    }
+
+    const FibreField<dim> &
+    fibres() const
+    {
+      return fibre_field;
+    }
+
+    /// Bytes held by the matrix, the cell cache and the dof handler on
+    /// this process.
+    std::size_t
+    memory() const;
+
+  private:
+    /// What one assembly pass computes.
+    struct Request
+    {
+      const VectorType          *u       = nullptr; ///< ghosted
+      const VectorType          *inertia = nullptr; ///< ghosted w in M w
+      double                     mass_jacobian_coefficient = 0;
+      double                     time                      = 0;
+      bool                       internal                  = true;
+      bool                       external                  = true;
+      bool                       jacobian                  = false;
+      const AffineConstraints<double> *rows = nullptr;
+    };
+
+    /// residual = [internal] f_int(u) + [inertia] M w - [external]
+    /// f_ext(t), and with jacobian K(u) + c M into jacobian_matrix.
+    void
+    assemble(const Request &request, VectorType &residual);
+
+    Discretization<dim>               &discretization;
+    const materials::MaterialSet<dim> &materials;
+    boundary::BoundaryConditions<dim> &boundary_conditions;
+    CellCache<dim>                     cache;
+    FibreField<dim>                    fibre_field;
+    AffineConstraints<double>          no_constraints;
+    MatrixType                         jacobian_matrix;
+    std::optional<MatrixType>          mass;
+    std::optional<VectorType>          lumped;
+    bool                               body_force_present;
+    /// Ghosted copies of the arguments, reused between calls.
+    VectorType ghosted_u, ghosted_w;
+  };
+} // namespace tissuefem::solid

@@ -1,0 +1,53 @@
+#pragma once
+
+#include <tissuefem/time/interface.h>
+
+namespace tissuefem::time
+{
+  /**
+   * The common shape of one-step implicit methods whose step is the
+   * nonlinear system
+   *
+   *   c M (u - u_tilde) + f_int(u) - f_ext(t_{n+1}) = 0
+   *
+   * for u = u_{n+1}, solved by Newton's method: a derived class supplies
+   * c, u_tilde and the initial guess, and v, a once u is known. A step whose
+   * Newton iteration fails is retried with half the step size, at most
+   * 'Maximum step halvings' times; after a reduced step the step size grows
+   * back by factors of two towards 'Time step'.
+   */
+  class ImplicitOneStep : public Interface
+  {
+  public:
+    void
+    initialize(Context &context, State &state) override;
+
+    StepReport
+    advance(State &state, const double end_time) override;
+
+  protected:
+    /// The coefficient c of the mass term for step size @p h.
+    virtual double
+    mass_coefficient(const double h) const = 0;
+
+    /// Fills u_tilde and the Newton initial guess from the state at t_n.
+    virtual void
+    predict(const State &old_state,
+            const double h,
+            VectorType  &u_tilde,
+            VectorType  &initial_guess) const = 0;
+
+    /// v_{n+1} and a_{n+1} from u_{n+1} (in @p new_state) and the old state.
+    virtual void
+    finish(const State      &old_state,
+           const VectorType &u_tilde,
+           const double      h,
+           State            &new_state) const = 0;
+
+    Context *context = nullptr;
+
+  private:
+    double     step_size = 0;
+    VectorType u_tilde;
+  };
+} // namespace tissuefem::time

@@ -1,0 +1,677 @@
+#include <deal.II/base/work_stream.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include <tissuefem/solid/edge_length_element.h>
+#include <tissuefem/solid/quantities.h>
+#include <tissuefem/solid/solid.h>
+
+#include <algorithm>
+#include <map>
+#include <numeric>
+#include <sstream>
+
+namespace tissuefem::solid
+{
+  namespace
+  {
+    /// Per-thread work space of an assembly pass.
+    template <int dim>
+    struct Scratch
+    {
+      Scratch(const Discretization<dim> &discretization, const bool faces)
+          : n(discretization.fe->n_dofs_per_cell())
+          , u_cell(n)
+          , w_cell(n)
+          , U(discretization.fe->base_element(0).n_dofs_per_cell())
+          , W(U.size())
+          , vertices(U.size())
+          , gradients(U.size())
+          , body_force(dim)
+          , traction(dim)
+      {
+        if (faces)
+          face_values = std::make_unique<FEFaceValues<dim>>(
+            *discretization.mapping,
+            *discretization.fe,
+            discretization.face_quadrature,
+            update_values | update_quadrature_points | update_JxW_values);
+      }
+
+      Scratch(const Scratch &other)
+          : n(other.n)
+          , u_cell(other.u_cell)
+          , w_cell(other.w_cell)
+          , U(other.U)
+          , W(other.W)
+          , vertices(other.vertices)
+          , gradients(other.gradients)
+          , body_force(dim)
+          , traction(dim)
+      {
+        if (other.face_values)
+          face_values = std::make_unique<FEFaceValues<dim>>(
+            other.face_values->get_mapping(),
+            other.face_values->get_fe(),
+            other.face_values->get_quadrature(),
+            other.face_values->get_update_flags());
+      }
+
+      const unsigned int                 n;
+      std::vector<double>                u_cell, w_cell;
+      std::vector<Tensor<1, dim>>        U, W;
+      std::vector<Point<dim>>            vertices;
+      std::vector<Tensor<1, dim>>        gradients;
+      Vector<double>                     body_force, traction;
+      std::unique_ptr<FEFaceValues<dim>> face_values;
+    };
+
+    /// What one cell adds to the global objects.
+    struct Copy
+    {
+      explicit Copy(const unsigned int n)
+          : matrix(n, n)
+          , rhs(n)
+          , dofs(n)
+      {
+      }
+      FullMatrix<double>                   matrix;
+      Vector<double>                       rhs;
+      std::vector<types::global_dof_index> dofs;
+      /// Smallest det F of the cell where the model cannot represent
+      /// inversion (1 if none is inverted).
+      double inverted_det = 1;
+      unsigned int cell_index  = 0;
+      unsigned int cache_index = 0;
+    };
+  } // namespace
+
+
+  template <int dim>
+  Solid<dim>::Solid(Discretization<dim>               &discretization,
+                    const materials::MaterialSet<dim> &materials,
+                    boundary::BoundaryConditions<dim> &boundary_conditions)
+      : discretization(discretization)
+      , materials(materials)
+      , boundary_conditions(boundary_conditions)
+      , body_force_present(!boundary_conditions.body_force_is_zero)
+  {
+    no_constraints.close();
+    if (materials.edge_length_formulation())
+      require(discretization.simplex && discretization.fe->degree == 1,
+              "Materials/Formulation",
+              "'edge length' needs linear simplices (Geometry/Cell type = "
+              "simplex or a simplex mesh file, Polynomial degree = 1)");
+    setup();
+  }
+
+
+  template <int dim>
+  void
+  Solid<dim>::setup()
+  {
+    discretization.distribute(&boundary_conditions);
+    const auto &dof_handler = discretization.dof_handler;
+    TrilinosWrappers::SparsityPattern sparsity(
+      discretization.locally_owned,
+      discretization.locally_owned,
+      discretization.locally_relevant,
+      parallel_tools::communicator());
+    DoFTools::make_sparsity_pattern(
+      dof_handler,
+      sparsity,
+      discretization.constraints,
+      false,
+      Utilities::MPI::this_mpi_process(parallel_tools::communicator()));
+    sparsity.compress();
+    jacobian_matrix.reinit(sparsity);
+    mass.reset();
+    lumped.reset();
+    cache.build(discretization, body_force_present);
+    fibre_field.build(discretization, materials);
+    discretization.initialize_vector(ghosted_u, true);
+    discretization.initialize_vector(ghosted_w, true);
+  }
+
+
+  template <int dim>
+  void
+  Solid<dim>::initialize_vector(VectorType &v) const
+  {
+    discretization.initialize_vector(v);
+  }
+
+
+  template <int dim>
+  void
+  Solid<dim>::apply_dirichlet_values(const double time, VectorType &u) const
+  {
+    std::map<types::global_dof_index, double> values;
+    for (auto &d : boundary_conditions.dirichlet)
+      {
+        d.displacement->set_time(time);
+        VectorTools::interpolate_boundary_values(*discretization.mapping,
+                                                 discretization.dof_handler,
+                                                 d.id,
+                                                 *d.displacement,
+                                                 values,
+                                                 d.mask);
+      }
+    for (const auto &[dof, value] : values)
+      if (discretization.locally_owned.is_element(dof)
+          && !discretization.hanging_node_constraints.is_constrained(dof))
+        u[dof] = value;
+    u.compress(VectorOperation::insert);
+    discretization.hanging_node_constraints.distribute(u);
+  }
+
+
+  template <int dim>
+  void
+  Solid<dim>::zero_constrained_entries(VectorType &v) const
+  {
+    discretization.constraints.set_zero(v);
+  }
+
+
+  template <int dim>
+  void
+  Solid<dim>::initial_state(VectorType &u, VectorType &v) const
+  {
+    initialize_vector(u);
+    initialize_vector(v);
+    boundary_conditions.initial_displacement->set_time(0);
+    boundary_conditions.initial_velocity->set_time(0);
+    VectorTools::interpolate(*discretization.mapping,
+                             discretization.dof_handler,
+                             *boundary_conditions.initial_displacement,
+                             u);
+    VectorTools::interpolate(*discretization.mapping,
+                             discretization.dof_handler,
+                             *boundary_conditions.initial_velocity,
+                             v);
+    discretization.hanging_node_constraints.distribute(u);
+    discretization.hanging_node_constraints.distribute(v);
+  }
+
+
+  template <int dim>
+  void
+  Solid<dim>::assemble(const Request &request, VectorType &residual)
+  {
+    const unsigned int n         = cache.n_dofs;
+    const unsigned int n_scalar  = cache.n_scalar;
+    const unsigned int n_q       = cache.n_q;
+    const auto        &fe        = *discretization.fe;
+    const auto         method    = materials.tangent_method();
+    const bool      edge_length = materials.edge_length_formulation();
+    const bool      neumann     = request.external
+                            && !boundary_conditions.neumann.empty();
+    const AffineConstraints<double> &rows = *request.rows;
+
+    boundary_conditions.set_time(request.time);
+    discretization.initialize_assembly_vector(residual);
+    if (request.jacobian)
+      jacobian_matrix = 0;
+
+    std::vector<unsigned int> component(n);
+    for (unsigned int i = 0; i < n; ++i)
+      component[i] = fe.system_to_component_index(i).first;
+
+    std::vector<std::tuple<unsigned int, double, Point<dim>>> inverted;
+
+    auto worker = [&](const std::vector<unsigned int>::const_iterator &it,
+                      Scratch<dim>                                    &s,
+                      Copy                                            &copy) {
+      const unsigned int c    = *it;
+      const auto        &cell = cache.cells()[c];
+      const auto        *dofs = cache.dofs(c);
+      const double      *JxW  = cache.JxW(c);
+      std::copy(dofs, dofs + n, copy.dofs.begin());
+      copy.cell_index   = cell->active_cell_index();
+      copy.cache_index  = c;
+      copy.inverted_det = 1;
+      copy.rhs          = 0;
+      if (request.jacobian)
+        copy.matrix = 0;
+
+      for (unsigned int k = 0; k < n_scalar; ++k)
+        for (unsigned int a = 0; a < dim; ++a)
+          {
+            const unsigned int i = cache.local_index[k * dim + a];
+            s.U[k][a] = request.internal ? (*request.u)[dofs[i]] : 0.;
+            s.W[k][a] = request.inertia ? (*request.inertia)[dofs[i]] : 0.;
+          }
+      const auto  &material = materials.material(cell->material_id());
+      const double rho      = materials.density(cell->material_id());
+      const bool   elastic  = request.internal && !edge_length;
+      const double mass_jacobian = request.mass_jacobian_coefficient * rho;
+
+      Tensor<2, dim> P;
+      Tensor<4, dim> A;
+      Tensor<3, dim> B;
+      for (unsigned int q = 0; q < n_q; ++q)
+        {
+          if (request.internal)
+            {
+              Tensor<2, dim> F = unit_symmetric_tensor<dim>();
+              for (unsigned int k = 0; k < n_scalar; ++k)
+                F += outer_product(s.U[k], cache.gradient(c, q, k));
+              const double det = determinant(F);
+              if (det <= 0 && !material.admits_inversion())
+                {
+                  copy.inverted_det = std::min(copy.inverted_det, det);
+                  continue;
+                }
+              const Tensor<1, dim> &a = fibre_field.at(copy.cell_index, q);
+              if (elastic)
+                {
+                  if (request.jacobian)
+                    material.stress_and_tangent(F, a, P, A, method);
+                  else
+                    P = material.stress(F, a);
+                }
+            }
+
+          // Loads per unit reference volume, with the inertial term
+          // rho w acting like a load.
+          Tensor<1, dim> load;
+          if (request.external)
+            {
+              load = rho * boundary_conditions.gravity;
+              if (body_force_present)
+                {
+                  boundary_conditions.body_force->vector_value(
+                    cache.point(c, q), s.body_force);
+                  for (unsigned int d = 0; d < dim; ++d)
+                    load[d] += s.body_force[d];
+                }
+            }
+          if (request.inertia)
+            for (unsigned int k = 0; k < n_scalar; ++k)
+              load -= (rho * cache.values[q * n_scalar + k]) * s.W[k];
+
+          for (unsigned int k = 0; k < n_scalar; ++k)
+            {
+              const Tensor<1, dim> &g_k   = cache.gradient(c, q, k);
+              const double          phi_k = cache.values[q * n_scalar + k];
+              Tensor<1, dim>        r     = -phi_k * load;
+              if (elastic)
+                r += P * g_k;
+              for (unsigned int a = 0; a < dim; ++a)
+                copy.rhs[cache.local_index[k * dim + a]] += r[a] * JxW[q];
+              if (!request.jacobian)
+                continue;
+              // B_k[a][b][e] = A[a][m][b][e] g_k[m], so that
+              // K_(k a)(l b) = B_k[a][b] . g_l (problem session eq 19).
+              if (elastic)
+                for (unsigned int a = 0; a < dim; ++a)
+                  {
+                    B[a] = 0;
+                    for (unsigned int m = 0; m < dim; ++m)
+                      B[a] += g_k[m] * A[a][m];
+                  }
+              for (unsigned int a = 0; a < dim; ++a)
+                {
+                  const unsigned int i = cache.local_index[k * dim + a];
+                  for (unsigned int l = 0; l < n_scalar; ++l)
+                    {
+                      const Tensor<1, dim> &g_l = cache.gradient(c, q, l);
+                      const double mass_kl = mass_jacobian * phi_k
+                                             * cache.values[q * n_scalar + l];
+                      for (unsigned int b = 0; b < dim; ++b)
+                        {
+                          const unsigned int j
+                            = cache.local_index[l * dim + b];
+                          if (j < i)
+                            continue;
+                          double value = elastic ? B[a][b] * g_l : 0.;
+                          if (a == b)
+                            value += mass_kl;
+                          copy.matrix(i, j) += value * JxW[q];
+                        }
+                    }
+                }
+            }
+        }
+
+      if (request.internal && edge_length && copy.inverted_det > 0)
+        {
+          double volume = 0;
+          for (unsigned int q = 0; q < n_q; ++q)
+            volume += JxW[q];
+          for (unsigned int k = 0; k < n_scalar; ++k)
+            {
+              s.vertices[k]  = cell->vertex(k);
+              s.gradients[k] = cache.gradient(c, 0, k);
+            }
+          add_edge_length_element(s.vertices,
+                                  s.gradients,
+                                  volume,
+                                  s.U,
+                                  cache.local_index,
+                                  material,
+                                  fibre_field.at(copy.cell_index, 0),
+                                  copy.rhs,
+                                  request.jacobian ? &copy.matrix : nullptr);
+        }
+
+      if (neumann && cell->at_boundary())
+        for (const auto &face : cell->face_iterators())
+          if (face->at_boundary())
+            for (const auto &condition : boundary_conditions.neumann)
+              if (face->boundary_id() == condition.id)
+                {
+                  auto &fv = *s.face_values;
+                  fv.reinit(cell, face);
+                  for (const unsigned int q : fv.quadrature_point_indices())
+                    {
+                      condition.traction->vector_value(fv.quadrature_point(q),
+                                                       s.traction);
+                      for (unsigned int i = 0; i < n; ++i)
+                        copy.rhs[i] -= s.traction[component[i]]
+                                       * fv.shape_value(i, q) * fv.JxW(q);
+                    }
+                }
+
+      if (request.jacobian)
+        for (unsigned int i = 0; i < n; ++i)
+          for (unsigned int j = 0; j < i; ++j)
+            copy.matrix(i, j) = copy.matrix(j, i);
+    };
+
+    auto copier = [&](const Copy &copy) {
+      if (copy.inverted_det <= 0)
+        {
+          inverted.emplace_back(copy.cell_index,
+                                copy.inverted_det,
+                                cache.cells()[copy.cache_index]->center());
+          return;
+        }
+      if (request.jacobian)
+        rows.distribute_local_to_global(
+          copy.matrix, copy.rhs, copy.dofs, jacobian_matrix, residual);
+      else
+        rows.distribute_local_to_global(copy.rhs, copy.dofs, residual);
+    };
+
+    std::vector<unsigned int> indices(cache.cells().size());
+    std::iota(indices.begin(), indices.end(), 0u);
+    WorkStream::run(indices.cbegin(),
+                    indices.cend(),
+                    worker,
+                    copier,
+                    Scratch<dim>(discretization, neumann),
+                    Copy(n));
+
+    residual.compress(VectorOperation::add);
+    if (request.jacobian)
+      jacobian_matrix.compress(VectorOperation::add);
+
+    // Every process must learn of an inversion anywhere: gather (active
+    // cell index, det F, centre) of the inverted cells.
+    std::vector<double> flat;
+    for (const auto &[index, det, center] : inverted)
+      {
+        flat.push_back(index);
+        flat.push_back(det);
+        for (unsigned int d = 0; d < dim; ++d)
+          flat.push_back(center[d]);
+      }
+    std::vector<std::vector<double>> everywhere
+      = Utilities::MPI::all_gather(parallel_tools::communicator(), flat);
+    std::vector<std::vector<double>> cells;
+    for (const auto &part : everywhere)
+      for (unsigned int i = 0; i < part.size(); i += dim + 2)
+        cells.emplace_back(part.begin() + i, part.begin() + i + dim + 2);
+    if (cells.empty())
+      return;
+    std::sort(cells.begin(), cells.end());
+    double smallest = 0;
+    for (const auto &cell : cells)
+      smallest = std::min(smallest, cell[1]);
+    std::ostringstream message;
+    message << cells.size() << " element(s) inverted (smallest det F = "
+            << smallest << "): cell";
+    for (unsigned int i = 0; i < std::min<std::size_t>(cells.size(), 4); ++i)
+      {
+        message << (i ? ", " : " ") << static_cast<unsigned int>(cells[i][0])
+                << " at (";
+        for (unsigned int d = 0; d < dim; ++d)
+          message << (d ? " " : "") << cells[i][2 + d];
+        message << ")";
+      }
+    if (cells.size() > 4)
+      message << ", ...";
+    message << "; the material model is undefined for det F <= 0 (use "
+            << "'robust neo-Hookean' for scenes that invert elements)";
+    throw InvertedElementError(message.str());
+  }
+
+
+  template <int dim>
+  void
+  Solid<dim>::implicit_residual(const VectorType &u,
+                                const VectorType &u_tilde,
+                                const double      mass_coefficient,
+                                const double      time,
+                                VectorType       &residual,
+                                const bool        with_jacobian)
+  {
+    ghosted_u = u;
+    Request request;
+    request.u = &ghosted_u;
+    if (mass_coefficient != 0)
+      {
+        // The inertial term c M (u - u_tilde) is M w with w = c (u - u_tilde).
+        VectorType w(u);
+        w -= u_tilde;
+        w *= mass_coefficient;
+        ghosted_w       = w;
+        request.inertia = &ghosted_w;
+      }
+    request.mass_jacobian_coefficient = mass_coefficient;
+    request.time                      = time;
+    request.jacobian                  = with_jacobian;
+    request.rows                      = &discretization.constraints;
+    assemble(request, residual);
+  }
+
+
+  template <int dim>
+  void
+  Solid<dim>::internal_force(const VectorType &u, VectorType &force)
+  {
+    ghosted_u = u;
+    Request request;
+    request.u        = &ghosted_u;
+    request.external = false;
+    request.rows     = &no_constraints;
+    assemble(request, force);
+  }
+
+
+  template <int dim>
+  void
+  Solid<dim>::external_force(const double time, VectorType &force)
+  {
+    Request request;
+    request.internal = false;
+    request.time     = time;
+    request.rows     = &no_constraints;
+    assemble(request, force);
+    force *= -1.;
+  }
+
+
+  template <int dim>
+  const MatrixType &
+  Solid<dim>::mass_matrix()
+  {
+    if (mass)
+      return *mass;
+    // Unconstrained: explicit methods and energies need every row.
+    TrilinosWrappers::SparsityPattern sparsity(
+      discretization.locally_owned,
+      discretization.locally_owned,
+      discretization.locally_relevant,
+      parallel_tools::communicator());
+    DoFTools::make_sparsity_pattern(
+      discretization.dof_handler,
+      sparsity,
+      no_constraints,
+      true,
+      Utilities::MPI::this_mpi_process(parallel_tools::communicator()));
+    sparsity.compress();
+    mass.emplace();
+    mass->reinit(sparsity);
+    const unsigned int n = cache.n_dofs, n_q = cache.n_q;
+    const unsigned int n_scalar = cache.n_scalar;
+    FullMatrix<double> cell_matrix(n, n);
+    std::vector<types::global_dof_index> dofs(n);
+    for (unsigned int c = 0; c < cache.cells().size(); ++c)
+      {
+        const double rho
+          = materials.density(cache.cells()[c]->material_id());
+        cell_matrix = 0;
+        for (unsigned int q = 0; q < n_q; ++q)
+          for (unsigned int k = 0; k < n_scalar; ++k)
+            for (unsigned int l = 0; l < n_scalar; ++l)
+              {
+                const double m = rho * cache.values[q * n_scalar + k]
+                                 * cache.values[q * n_scalar + l]
+                                 * cache.JxW(c)[q];
+                for (unsigned int a = 0; a < dim; ++a)
+                  cell_matrix(cache.local_index[k * dim + a],
+                              cache.local_index[l * dim + a]) += m;
+              }
+        std::copy(cache.dofs(c), cache.dofs(c) + n, dofs.begin());
+        no_constraints.distribute_local_to_global(cell_matrix, dofs, *mass);
+      }
+    mass->compress(VectorOperation::add);
+    return *mass;
+  }
+
+
+  template <int dim>
+  const VectorType &
+  Solid<dim>::lumped_mass()
+  {
+    if (lumped)
+      return *lumped;
+    // Row sums of the consistent mass: since the shape functions sum to
+    // one, row k sums to int rho N_k dV.
+    lumped.emplace();
+    discretization.initialize_assembly_vector(*lumped);
+    const unsigned int n = cache.n_dofs, n_q = cache.n_q;
+    const unsigned int n_scalar = cache.n_scalar;
+    Vector<double>     cell_vector(n);
+    std::vector<types::global_dof_index> dofs(n);
+    for (unsigned int c = 0; c < cache.cells().size(); ++c)
+      {
+        const double rho
+          = materials.density(cache.cells()[c]->material_id());
+        cell_vector = 0;
+        for (unsigned int q = 0; q < n_q; ++q)
+          for (unsigned int k = 0; k < n_scalar; ++k)
+            for (unsigned int a = 0; a < dim; ++a)
+              cell_vector[cache.local_index[k * dim + a]]
+                += rho * cache.values[q * n_scalar + k] * cache.JxW(c)[q];
+        std::copy(cache.dofs(c), cache.dofs(c) + n, dofs.begin());
+        no_constraints.distribute_local_to_global(cell_vector, dofs, *lumped);
+      }
+    lumped->compress(VectorOperation::add);
+    return *lumped;
+  }
+
+
+  template <int dim>
+  double
+  Solid<dim>::stored_energy(const VectorType &u) const
+  {
+    VectorType ghosted;
+    discretization.initialize_vector(ghosted, true);
+    ghosted = u;
+    return solid::stored_energy(discretization, materials, fibre_field, ghosted);
+  }
+
+
+  template <int dim>
+  double
+  Solid<dim>::kinetic_energy(const VectorType &v)
+  {
+    ghosted_w = v;
+    const unsigned int n_q = cache.n_q, n_scalar = cache.n_scalar;
+    double             energy = 0;
+    for (unsigned int c = 0; c < cache.cells().size(); ++c)
+      {
+        const double rho
+          = materials.density(cache.cells()[c]->material_id());
+        for (unsigned int q = 0; q < n_q; ++q)
+          {
+            Tensor<1, dim> velocity;
+            for (unsigned int k = 0; k < n_scalar; ++k)
+              for (unsigned int a = 0; a < dim; ++a)
+                velocity[a]
+                  += cache.values[q * n_scalar + k]
+                     * ghosted_w[cache.dofs(c)[cache.local_index[k * dim + a]]];
+            energy += 0.5 * rho * velocity.norm_square() * cache.JxW(c)[q];
+          }
+      }
+    return Utilities::MPI::sum(energy, parallel_tools::communicator());
+  }
+
+
+  template <int dim>
+  std::vector<double>
+  Solid<dim>::reaction_forces(
+    const VectorType                      &u,
+    const VectorType                      &acceleration,
+    const double                           time,
+    const std::vector<types::boundary_id> &boundary_ids)
+  {
+    std::vector<double> forces(boundary_ids.size() * dim, 0.);
+    if (boundary_ids.empty())
+      return forces;
+    ghosted_u = u;
+    ghosted_w = acceleration;
+    Request request;
+    request.u       = &ghosted_u;
+    request.inertia = &ghosted_w;
+    request.time    = time;
+    request.rows    = &no_constraints;
+    VectorType residual;
+    assemble(request, residual);
+    for (unsigned int b = 0; b < boundary_ids.size(); ++b)
+      for (unsigned int c = 0; c < dim; ++c)
+        {
+          std::vector<bool> mask(dim, false);
+          mask[c] = true;
+          IndexSet dofs
+            = DoFTools::extract_boundary_dofs(discretization.dof_handler,
+                                              ComponentMask(mask),
+                                              {boundary_ids[b]});
+          dofs = dofs & discretization.locally_owned;
+          for (const auto dof : dofs)
+            forces[b * dim + c] += residual[dof];
+        }
+    Utilities::MPI::sum(forces, parallel_tools::communicator(), forces);
+    return forces;
+  }
+
+
+  template <int dim>
+  std::size_t
+  Solid<dim>::memory() const
+  {
+    return jacobian_matrix.memory_consumption() + cache.memory()
+           + discretization.dof_handler.memory_consumption()
+           + (mass ? mass->memory_consumption() : 0);
+  }
+
+  template class Solid<1>;
+  template class Solid<2>;
+  template class Solid<3>;
+} // namespace tissuefem::solid

@@ -1,0 +1,81 @@
+#include <tissuefem/base/input_error.h>
+#include <tissuefem/time/implicit_one_step.h>
+
+#include <iostream>
+#include <sstream>
+
+namespace tissuefem::time
+{
+  void
+  ImplicitOneStep::initialize(Context &c, State &state)
+  {
+    context   = &c;
+    step_size = c.time.time_step;
+    c.solid.initialize_vector(state.a);
+  }
+
+
+  StepReport
+  ImplicitOneStep::advance(State &state, const double end_time)
+  {
+    auto      &solid = context->solid;
+    auto      &linear_solver = context->linear_solver;
+    StepReport report;
+    double     h = std::min(step_size, end_time - state.time);
+    State      next;
+    next.time = state.time;
+    solid.initialize_vector(next.u);
+    const unsigned int linear_before = linear_solver.statistics().iterations;
+    for (unsigned int halvings = 0;; ++halvings)
+      {
+        const double c = mass_coefficient(h);
+        predict(state, h, u_tilde, next.u);
+        solid.apply_dirichlet_values(state.time + h, next.u);
+        const double t_new = state.time + h;
+        const solvers::NewtonResult result = solvers::solve_newton(
+          context->newton,
+          next.u,
+          [&](const VectorType &x, VectorType &r, bool jacobian) {
+            solid.implicit_residual(x, u_tilde, c, t_new, r, jacobian);
+          },
+          [&](VectorType &x, const VectorType &b) {
+            linear_solver.solve(solid.jacobian(), x, b);
+          });
+        report.newton_iterations += result.iterations;
+        report.assembly_seconds += result.assembly_seconds;
+        report.solve_seconds += result.solve_seconds;
+        if (result.converged)
+          {
+            report.residual_norm = result.residual_norms.back();
+            break;
+          }
+        ++report.rejected_attempts;
+        std::ostringstream message;
+        message << "Newton failed at t = " << t_new << " with dt = " << h
+                << ": " << result.failure;
+        if (halvings == context->time.max_step_halvings)
+          throw SolverError(message.str() + "; gave up after "
+                            + std::to_string(halvings)
+                            + " step halvings ('Time integration/Maximum "
+                              "step halvings')");
+        parallel_tools::screen()
+          << "  " << message.str() << "; retrying with dt = " << h / 2
+          << std::endl;
+        h /= 2;
+      }
+    // Newton and linear iterations of all attempts, failed ones included:
+    // they are what the step cost.
+    report.linear_iterations =
+      linear_solver.statistics().iterations - linear_before;
+    next.time = state.time + h;
+    finish(state, u_tilde, h, next);
+    state.time = next.time;
+    state.u.swap(next.u);
+    state.v.swap(next.v);
+    state.a.swap(next.a);
+    report.dt = h;
+    // After a reduced step, grow back towards the requested step size.
+    step_size = std::min(context->time.time_step, 2 * h);
+    return report;
+  }
+} // namespace tissuefem::time
