@@ -5,6 +5,8 @@
 #include <deal.II/base/point.h>
 #include <deal.II/base/types.h>
 
+#include <tissuefem/base/parallel.h>
+
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -87,9 +89,9 @@ namespace tissuefem
 
   /// Whether every entry of @p v is finite. (deal.II's Vector::l2_norm()
   /// asserts finiteness in Debug mode, so it cannot serve as the check.)
-  template <typename VectorType>
+  template <typename Vector>
   bool
-  all_finite(const VectorType &v)
+  all_finite(const Vector &v)
   {
     for (const auto x : v)
       if (!std::isfinite(x))
@@ -97,13 +99,29 @@ namespace tissuefem
     return true;
   }
 
-  /// The l2 norm of @p v, or NaN if any entry is not finite.
-  template <typename VectorType>
-  double
-  checked_l2_norm(const VectorType &v)
+  /// For a distributed vector: whether every entry on every process is
+  /// finite. Collective, so that all processes take the same branch.
+  inline bool
+  all_finite(const TrilinosWrappers::MPI::Vector &v)
   {
-    return all_finite(v) ? double(v.l2_norm())
-                         : std::numeric_limits<double>::quiet_NaN();
+    bool local = true;
+    for (const auto x : v)
+      if (!std::isfinite(x))
+        {
+          local = false;
+          break;
+        }
+    return Utilities::MPI::min(local ? 1 : 0, v.get_mpi_communicator()) == 1;
+  }
+
+  /// The l2 norm of @p v, or NaN if any entry is not finite (collective for
+  /// distributed vectors).
+  template <typename Vector>
+  double
+  checked_l2_norm(const Vector &v)
+  {
+    return all_finite(v) ? double(v.l2_norm()) :
+                           std::numeric_limits<double>::quiet_NaN();
   }
 
   /// Collapses new lines and runs of white space into single spaces.
