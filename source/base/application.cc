@@ -1,5 +1,6 @@
 #include <deal.II/base/multithread_info.h>
 
+#include <tissuefem/adaptation/mesh_adaptation.h>
 #include <tissuefem/base/application.h>
 #include <tissuefem/base/input_error.h>
 #include <tissuefem/base/parallel.h>
@@ -46,6 +47,7 @@ namespace tissuefem
     solvers::NewtonParameters::declare_parameters(prm);
     solvers::LinearSolverParameters::declare_parameters(prm);
     output::OutputParameters::declare_parameters(prm);
+    adaptation::MeshRefinementParameters::declare_parameters(prm);
     problems::ProblemRegistry::instance().declare_parameters(prm);
   }
 

@@ -29,6 +29,7 @@ namespace tissuefem::problems
     newton_parameters.parse_parameters(prm);
     linear_solver_parameters.parse_parameters(prm);
     output_parameters.parse_parameters(prm);
+    refinement_parameters.parse_parameters(prm);
   }
 
 
@@ -79,7 +80,8 @@ namespace tissuefem::problems
     linear_solver
       = std::make_unique<solvers::LinearSolver>(linear_solver_parameters);
     if (linear_solver_parameters.type == "cg amg")
-      linear_solver->set_near_null_space(discretization->rigid_body_modes());
+      linear_solver->set_near_null_space(discretization->rigid_body_modes(),
+                                         dim);
     const auto present = triangulation.get_boundary_ids();
     for (const auto id : output_parameters.reaction_boundary_ids)
       require(std::find(present.begin(), present.end(), id) != present.end(),
@@ -88,6 +90,35 @@ namespace tissuefem::problems
                 + " is on no boundary face of the mesh");
     writer =
       std::make_unique<output::OutputWriter<dim>>(output_parameters, *solid);
+    adaptation = std::make_unique<adaptation::MeshAdaptation<dim>>(
+      refinement_parameters, triangulation, *solid);
+  }
+
+
+  template <int dim>
+  bool
+  Elasticity<dim>::adapt_mesh(const unsigned int step, time::State &state)
+  {
+    if (!adaptation->due(step))
+      return false;
+    std::vector<VectorType *> vectors = {&state.u, &state.v, &state.a};
+    for (VectorType *v : integrator->history())
+      vectors.push_back(v);
+    // A factorization refers to the matrix, which the new mesh replaces:
+    // drop it first.
+    linear_solver->reset();
+    if (!adaptation->adapt(state.u, vectors))
+      return false;
+    // Nodes new on the Dirichlet boundary get the prescribed values.
+    solid->apply_dirichlet_values(state.time, state.u);
+    if (linear_solver_parameters.type == "cg amg")
+      linear_solver->set_near_null_space(discretization->rigid_body_modes(),
+                                         dim);
+    integrator->mesh_changed();
+    parallel_tools::screen()
+      << "  mesh adapted: " << triangulation.n_active_cells() << " cells, "
+      << solid->n_dofs() << " unknowns" << std::endl;
+    return true;
   }
 
 
@@ -127,8 +158,9 @@ namespace tissuefem::problems
       state,
       solid->reaction_forces(state.u, state.a, state.time, reaction_ids));
 
-    const double end_time = time_parameters.end_time;
-    unsigned int step     = 0;
+    const double end_time     = time_parameters.end_time;
+    unsigned int step         = 0;
+    bool         mesh_changed = false;
     while (state.time < end_time * (1 - 1e-12))
       {
         time::StepReport report;
@@ -150,7 +182,11 @@ namespace tissuefem::problems
                << "  |R| = " << std::scientific << std::setprecision(2)
                << report.residual_norm << std::defaultfloat
                << std::setprecision(6) << std::endl;
-        writer->write_step(step, report, state, reactions);
+        writer->write_step(step, report, state, reactions, mesh_changed);
+        // The state just written is an equilibrium (or solution) on its
+        // mesh; the next step starts on the adapted one.
+        if (state.time < end_time * (1 - 1e-12))
+          mesh_changed = adapt_mesh(step, state);
       }
 
     VectorType u;

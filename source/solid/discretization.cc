@@ -99,6 +99,10 @@ namespace tissuefem::solid
     DoFTools::make_hanging_node_constraints(dof_handler,
                                             hanging_node_constraints);
     hanging_node_constraints.close();
+    has_hanging_nodes =
+      Utilities::MPI::max(hanging_node_constraints.n_constraints() > 0 ? 1 : 0,
+                          parallel_tools::communicator())
+      == 1;
 
     constraints.clear();
     constraints.reinit(locally_relevant);

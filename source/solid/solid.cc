@@ -453,6 +453,23 @@ namespace tissuefem::solid
 
   template <int dim>
   void
+  Solid<dim>::make_ghosted(const VectorType &u, VectorType &ghosted) const
+  {
+    // Hanging-node values follow their parents; a state may hold stale
+    // ones (Newton updates are zero there), so they are set here.
+    if (!discretization.has_hanging_nodes)
+      {
+        ghosted = u;
+        return;
+      }
+    VectorType owned(u);
+    discretization.hanging_node_constraints.distribute(owned);
+    ghosted = owned;
+  }
+
+
+  template <int dim>
+  void
   Solid<dim>::implicit_residual(const VectorType &u,
                                 const VectorType &u_tilde,
                                 const double      mass_coefficient,
@@ -460,7 +477,7 @@ namespace tissuefem::solid
                                 VectorType       &residual,
                                 const bool        with_jacobian)
   {
-    ghosted_u = u;
+    make_ghosted(u, ghosted_u);
     Request request;
     request.u = &ghosted_u;
     if (mass_coefficient != 0)
@@ -484,7 +501,7 @@ namespace tissuefem::solid
   void
   Solid<dim>::internal_force(const VectorType &u, VectorType &force)
   {
-    ghosted_u = u;
+    make_ghosted(u, ghosted_u);
     Request request;
     request.u        = &ghosted_u;
     request.external = false;
@@ -593,7 +610,7 @@ namespace tissuefem::solid
   {
     VectorType ghosted;
     discretization.initialize_vector(ghosted, true);
-    ghosted = u;
+    make_ghosted(u, ghosted);
     return solid::stored_energy(discretization, materials, fibre_field, ghosted);
   }
 
@@ -602,7 +619,7 @@ namespace tissuefem::solid
   double
   Solid<dim>::kinetic_energy(const VectorType &v)
   {
-    ghosted_w = v;
+    make_ghosted(v, ghosted_w);
     const unsigned int n_q = cache.n_q, n_scalar = cache.n_scalar;
     double             energy = 0;
     for (unsigned int c = 0; c < cache.cells().size(); ++c)
@@ -635,8 +652,8 @@ namespace tissuefem::solid
     std::vector<double> forces(boundary_ids.size() * dim, 0.);
     if (boundary_ids.empty())
       return forces;
-    ghosted_u = u;
-    ghosted_w = acceleration;
+    make_ghosted(u, ghosted_u);
+    make_ghosted(acceleration, ghosted_w);
     Request request;
     request.u       = &ghosted_u;
     request.inertia = &ghosted_w;

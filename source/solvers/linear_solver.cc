@@ -112,6 +112,7 @@ namespace tissuefem::solvers
     std::unique_ptr<Epetra_MultiVector>                modes;
     std::vector<VectorType>                            mode_vectors;
     unsigned int                                       reference_iterations = 0;
+    unsigned int                                       components = 1;
 
     ~Implementation()
     {
@@ -170,9 +171,11 @@ namespace tissuefem::solvers
 
 
   void
-  LinearSolver::set_near_null_space(const std::vector<VectorType> &modes)
+  LinearSolver::set_near_null_space(const std::vector<VectorType> &modes,
+                                    const unsigned int             components)
   {
     implementation->mode_vectors = modes;
+    implementation->components   = components;
     implementation->amg.reset();
   }
 
@@ -302,6 +305,9 @@ namespace tissuefem::solvers
                   list.set("null space: dimension",
                            static_cast<int>(impl.mode_vectors.size()));
                   list.set("null space: vectors", impl.modes->Values());
+                  // ML aggregates nodes, not single dofs, when it knows how
+                  // many unknowns each node has.
+                  list.set("PDE equations", static_cast<int>(impl.components));
                 }
               impl.amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
               impl.amg->initialize(A, list);

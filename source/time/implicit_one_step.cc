@@ -68,6 +68,9 @@ namespace tissuefem::time
     report.linear_iterations =
       linear_solver.statistics().iterations - linear_before;
     next.time = state.time + h;
+    // Newton leaves constrained entries alone; set hanging nodes (and the
+    // prescribed values, unchanged) in the state.
+    solid.apply_dirichlet_values(next.time, next.u);
     finish(state, u_tilde, h, next);
     state.time = next.time;
     state.u.swap(next.u);

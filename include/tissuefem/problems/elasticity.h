@@ -2,6 +2,7 @@
 
 #include <deal.II/distributed/shared_tria.h>
 
+#include <tissuefem/adaptation/mesh_adaptation.h>
 #include <tissuefem/boundary/boundary_conditions.h>
 #include <tissuefem/geometry/geometry.h>
 #include <tissuefem/materials/material_set.h>
@@ -19,7 +20,7 @@ namespace tissuefem::problems
    * A hyperelastic body moving under boundary conditions and loads: read
    * parameters -> build the scene (mesh, materials, boundary conditions,
    * solid) -> the chosen integrator advances the state step by step ->
-   * each state goes to output. The mesh is shared by all MPI processes
+   * each state goes to output -> the mesh adapts if asked. The mesh is shared by all MPI processes
    * (parallel::shared::Triangulation, partitioned by METIS); each process
    * assembles its own cells with several threads.
    */
@@ -49,6 +50,7 @@ namespace tissuefem::problems
     solvers::NewtonParameters       newton_parameters;
     solvers::LinearSolverParameters linear_solver_parameters;
     output::OutputParameters        output_parameters;
+    adaptation::MeshRefinementParameters refinement_parameters;
 
     parallel::shared::Triangulation<dim>               triangulation;
     std::unique_ptr<materials::MaterialSet<dim>>       materials;
@@ -58,5 +60,11 @@ namespace tissuefem::problems
     std::unique_ptr<time::Interface>                   integrator;
     std::unique_ptr<solvers::LinearSolver>             linear_solver;
     std::unique_ptr<output::OutputWriter<dim>>         writer;
+    std::unique_ptr<adaptation::MeshAdaptation<dim>>   adaptation;
+
+    /// Adapts the mesh after step @p step if due; returns whether it
+    /// changed.
+    bool
+    adapt_mesh(const unsigned int step, time::State &state);
   };
 } // namespace tissuefem::problems

@@ -88,5 +88,7 @@ namespace tissuefem::solid
     AffineConstraints<double> constraints;
     /// Hanging-node constraints only (for interpolating data).
     AffineConstraints<double> hanging_node_constraints;
+    /// Whether any process has hanging nodes (the same on every process).
+    bool has_hanging_nodes = false;
   };
 } // namespace tissuefem::solid

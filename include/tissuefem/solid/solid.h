@@ -30,7 +30,9 @@ namespace tissuefem::solid
    * repeated assemblies do element arithmetic only.
    *
    * After the mesh changes, call setup() again; every state vector must be
-   * transferred by the caller (see problems::MeshAdaptation).
+   * transferred by the caller (see problems::MeshAdaptation). Hanging-node
+   * values of the vectors given to the operators need not be set: the
+   * operators compute them from the parents.
    */
   template <int dim>
   class Solid : public Operators
@@ -138,6 +140,10 @@ namespace tissuefem::solid
       bool                       jacobian                  = false;
       const AffineConstraints<double> *rows = nullptr;
     };
+
+    /// @p ghosted = @p u with hanging-node values set from their parents.
+    void
+    make_ghosted(const VectorType &u, VectorType &ghosted) const;
 
     /// residual = [internal] f_int(u) + [inertia] M w - [external]
     /// f_ext(t), and with jacobian K(u) + c M into jacobian_matrix.

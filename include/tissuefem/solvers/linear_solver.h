@@ -53,7 +53,8 @@ namespace tissuefem::solvers
    *   while it works: it is rebuilt when a solve needs more than
    *   'AMG rebuild factor' times the iterations of the first solve after
    *   the last build, or fails.
-   * After the mesh changes, call reset().
+   * Before the matrix is destroyed or reinitialized (the mesh changes),
+   * call reset(): a kept factorization refers to it.
    */
   class LinearSolver
   {
@@ -62,9 +63,11 @@ namespace tissuefem::solvers
     ~LinearSolver();
 
     /// Near-null-space vectors for AMG (rigid-body modes), distributed like
-    /// the unknowns.
+    /// the unknowns, whose dofs come in blocks of @p components consecutive
+    /// indices per node (as deal.II numbers an FESystem's dofs).
     void
-    set_near_null_space(const std::vector<VectorType> &modes);
+    set_near_null_space(const std::vector<VectorType> &modes,
+                        const unsigned int             components);
 
     /// Forgets factorizations and preconditioners (the matrix layout
     /// changed).

@@ -1,0 +1,194 @@
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/grid/grid_refinement.h>
+#include <deal.II/lac/vector.h>
+#include <deal.II/numerics/error_estimator.h>
+#include <deal.II/numerics/solution_transfer.h>
+
+#include <tissuefem/adaptation/mesh_adaptation.h>
+#include <tissuefem/base/input_error.h>
+
+namespace tissuefem::adaptation
+{
+  void
+  MeshRefinementParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Mesh refinement");
+    prm.declare_entry(
+      "Indicator",
+      "none",
+      Patterns::Selection("none|Kelly"),
+      "'none': the mesh stays as built. 'Kelly': adapt the mesh during the "
+      "run from Kelly's indicator, the jump of the displacement gradient "
+      "across cell faces (length units times sqrt(length^(dim-1))); "
+      "quadrilaterals/hexahedra only (deal.II 9.4 cannot refine simplices "
+      "locally).");
+    prm.declare_entry("Strategy",
+                      "fixed number",
+                      Patterns::Selection("fixed number|fixed fraction"),
+                      "'fixed number': refine the 'Refine fraction' share of "
+                      "cells with the largest indicators and coarsen the "
+                      "'Coarsen fraction' share with the smallest. 'fixed "
+                      "fraction': refine the cells with the largest "
+                      "indicators that together hold 'Refine fraction' of "
+                      "the total, coarsen those holding 'Coarsen fraction'.");
+    prm.declare_entry("Refine fraction",
+                      "0.3",
+                      Patterns::Double(0, 1),
+                      "Share of cells (fixed number) or of the summed "
+                      "indicator (fixed fraction) to refine; in [0, 1].");
+    prm.declare_entry("Coarsen fraction",
+                      "0.03",
+                      Patterns::Double(0, 1),
+                      "Share to coarsen, as 'Refine fraction'; refine plus "
+                      "coarsen fraction must be at most 1.");
+    prm.declare_entry("Interval",
+                      "1",
+                      Patterns::Integer(1),
+                      "Adapt after every this many time (or load) steps.");
+    prm.declare_entry("Maximum levels",
+                      "2",
+                      Patterns::Integer(0, 10),
+                      "Refinement levels allowed above the mesh the run "
+                      "starts with (cells are never coarsened below it).");
+    prm.declare_entry("Maximum cells",
+                      "0",
+                      Patterns::Integer(0),
+                      "Stop refining when the mesh would exceed about this "
+                      "many cells; 0: no limit.");
+    prm.leave_subsection();
+  }
+
+
+  void
+  MeshRefinementParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Mesh refinement");
+    indicator        = prm.get("Indicator");
+    strategy         = prm.get("Strategy");
+    refine_fraction  = prm.get_double("Refine fraction");
+    coarsen_fraction = prm.get_double("Coarsen fraction");
+    interval         = prm.get_integer("Interval");
+    max_levels       = prm.get_integer("Maximum levels");
+    max_cells        = prm.get_integer("Maximum cells");
+    prm.leave_subsection();
+    require(refine_fraction + coarsen_fraction <= 1,
+            "Mesh refinement/Coarsen fraction",
+            "plus 'Refine fraction' must be at most 1");
+  }
+
+
+  template <int dim>
+  MeshAdaptation<dim>::MeshAdaptation(
+    const MeshRefinementParameters &parameters,
+    Triangulation<dim>             &triangulation,
+    solid::Solid<dim>              &solid)
+      : parameters(parameters)
+      , triangulation(triangulation)
+      , solid(solid)
+      , initial_level(triangulation.n_global_levels() - 1)
+  {
+    if (enabled())
+      require(!solid.get_discretization().simplex,
+              "Mesh refinement/Indicator",
+              "adaptive refinement needs quadrilaterals/hexahedra: deal.II "
+              "9.4 cannot refine triangles/tetrahedra locally (use 'none', "
+              "or 'Geometry/Global refinements' for uniform refinement)");
+  }
+
+
+  template <int dim>
+  bool
+  MeshAdaptation<dim>::adapt(const VectorType                &u,
+                             const std::vector<VectorType *> &vectors)
+  {
+    const auto    &discretization = solid.get_discretization();
+    const auto    &dof_handler    = discretization.dof_handler;
+    const MPI_Comm comm           = parallel_tools::communicator();
+
+    // The indicator on this process's cells, summed over processes so that
+    // every process marks the same cells.
+    VectorType ghosted;
+    discretization.initialize_vector(ghosted, true);
+    ghosted = u;
+    Vector<float> indicator(triangulation.n_active_cells());
+    KellyErrorEstimator<dim>::estimate(
+      *discretization.mapping,
+      dof_handler,
+      discretization.face_quadrature,
+      {},
+      ghosted,
+      indicator,
+      ComponentMask(),
+      nullptr,
+      numbers::invalid_unsigned_int,
+      Utilities::MPI::this_mpi_process(comm));
+    Utilities::MPI::sum(indicator, comm, indicator);
+
+    const unsigned int max_cells = parameters.max_cells > 0 ?
+                                     parameters.max_cells :
+                                     std::numeric_limits<unsigned int>::max();
+    if (parameters.strategy == "fixed number")
+      GridRefinement::refine_and_coarsen_fixed_number(
+        triangulation,
+        indicator,
+        parameters.refine_fraction,
+        parameters.coarsen_fraction,
+        max_cells);
+    else
+      GridRefinement::refine_and_coarsen_fixed_fraction(
+        triangulation,
+        indicator,
+        parameters.refine_fraction,
+        parameters.coarsen_fraction,
+        max_cells);
+    for (const auto &cell : triangulation.active_cell_iterators())
+      {
+        if (cell->level()
+            >= static_cast<int>(initial_level + parameters.max_levels))
+          cell->clear_refine_flag();
+        if (cell->level() <= static_cast<int>(initial_level))
+          cell->clear_coarsen_flag();
+      }
+    triangulation.prepare_coarsening_and_refinement();
+    bool flagged = false;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      flagged = flagged || cell->refine_flag_set() || cell->coarsen_flag_set();
+    if (!flagged)
+      return false;
+
+    // Every process holds the whole mesh, so each interpolates whole
+    // (replicated) vectors; then keeps the entries it owns.
+    VectorType everything;
+    everything.reinit(discretization.locally_owned,
+                      complete_index_set(dof_handler.n_dofs()),
+                      comm);
+    std::vector<Vector<double>> old_values(vectors.size(),
+                                           Vector<double>(dof_handler.n_dofs()));
+    for (unsigned int k = 0; k < vectors.size(); ++k)
+      {
+        everything = *vectors[k];
+        for (types::global_dof_index i = 0; i < dof_handler.n_dofs(); ++i)
+          old_values[k][i] = everything[i];
+      }
+    SolutionTransfer<dim, Vector<double>> transfer(dof_handler);
+    transfer.prepare_for_coarsening_and_refinement(old_values);
+    triangulation.execute_coarsening_and_refinement();
+    solid.setup();
+    std::vector<Vector<double>> new_values(vectors.size(),
+                                           Vector<double>(dof_handler.n_dofs()));
+    transfer.interpolate(old_values, new_values);
+    for (unsigned int k = 0; k < vectors.size(); ++k)
+      {
+        solid.initialize_vector(*vectors[k]);
+        for (const auto i : discretization.locally_owned)
+          (*vectors[k])[i] = new_values[k][i];
+        vectors[k]->compress(VectorOperation::insert);
+        discretization.hanging_node_constraints.distribute(*vectors[k]);
+      }
+    return true;
+  }
+
+  template class MeshAdaptation<1>;
+  template class MeshAdaptation<2>;
+  template class MeshAdaptation<3>;
+} // namespace tissuefem::adaptation
