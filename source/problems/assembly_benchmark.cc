@@ -1,11 +1,14 @@
 #include <deal.II/base/function_lib.h>
+#include <deal.II/base/multithread_info.h>
 #include <deal.II/base/utilities.h>
+#include <deal.II/distributed/shared_tria.h>
 #include <deal.II/numerics/vector_tools.h>
 
 #include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/boundary/boundary_conditions.h>
 #include <tissuefem/geometry/geometry.h>
 #include <tissuefem/materials/material_set.h>
+#include <tissuefem/problems/floor_kernel.h>
 #include <tissuefem/problems/interface.h>
 #include <tissuefem/solid/discretization.h>
 #include <tissuefem/solid/solid.h>
@@ -52,6 +55,13 @@ namespace tissuefem::problems
     void
     benchmark_mesh(const std::string &cell_type,
                    const std::string &subdivisions) const;
+
+    /// Times internal-force assembly, residual only and with the Jacobian,
+    /// of the floor kernel and of tissuefem with 1 and all threads.
+    void
+    compare_with_floor(solid::Discretization<dim>        &discretization,
+                       boundary::BoundaryConditions<dim> &boundary_conditions,
+                       const VectorType                  &u) const;
   };
 
 
@@ -107,7 +117,11 @@ namespace tissuefem::problems
     geometry.subdivisions       = subdivisions;
     geometry.scale              = 1;
     geometry.global_refinements = 0;
-    Triangulation<dim> triangulation;
+    parallel::shared::Triangulation<dim> triangulation(
+      parallel_tools::communicator(),
+      Triangulation<dim>::none,
+      false,
+      parallel::shared::Triangulation<dim>::partition_metis);
     geometry::build_triangulation(geometry, triangulation);
 
     solid::Discretization<dim>        discretization(triangulation,
@@ -134,7 +148,7 @@ namespace tissuefem::problems
     VectorType u_tilde;
     discretization.initialize_vector(u_tilde);
 
-    std::cout << "\n"
+    parallel_tools::screen() << "\n"
               << (cell_type == "simplex" ? "P1 simplices" : "Q1 hypercubes")
               << ": " << triangulation.n_active_cells() << " cells, "
               << u.size() << " unknowns, model '"
@@ -193,12 +207,117 @@ namespace tissuefem::problems
             diff.add(-1., reference);
             difference = diff.linfty_norm() / reference.linfty_norm();
           }
-        std::cout << std::setw(32) << name << std::fixed << std::setprecision(2)
+        parallel_tools::screen() << std::setw(32) << name << std::fixed << std::setprecision(2)
                   << std::setw(14) << per_cell << std::setw(16)
                   << per_cell / hand_time << std::scientific
                   << std::setprecision(1) << std::setw(34) << difference
                   << std::defaultfloat << std::setprecision(6) << "\n";
       }
+    compare_with_floor(discretization, boundary_conditions, u);
+  }
+
+
+  template <int dim>
+  void
+  AssemblyBenchmark<dim>::compare_with_floor(
+    solid::Discretization<dim>        &discretization,
+    boundary::BoundaryConditions<dim> &boundary_conditions,
+    const VectorType                  &u) const
+  {
+    auto        &screen  = parallel_tools::screen();
+    const double n_cells = discretization.dof_handler.get_triangulation()
+                             .n_active_cells();
+    materials::MaterialSet<dim> materials(material_parameters, prm);
+    solid::Solid<dim> solid(discretization, materials, boundary_conditions);
+    FloorKernel<dim>  floor(discretization, materials);
+    Vector<double>    u_all(u.size());
+    {
+      VectorType everything;
+      everything.reinit(discretization.locally_owned,
+                        complete_index_set(u.size()),
+                        parallel_tools::communicator());
+      everything = u;
+      for (unsigned int i = 0; i < u.size(); ++i)
+        u_all[i] = everything[i];
+    }
+    // Microseconds per cell of the whole mesh: the slowest process's best
+    // wall time over the repetitions, divided by all cells.
+    auto time = [&](const auto &work) {
+      double best = 1e300;
+      for (unsigned int r = 0; r < repetitions; ++r)
+        {
+          MPI_Barrier(parallel_tools::communicator());
+          const auto start = std::chrono::steady_clock::now();
+          work();
+          MPI_Barrier(parallel_tools::communicator());
+          best = std::min(best,
+                          std::chrono::duration<double>(
+                            std::chrono::steady_clock::now() - start)
+                            .count());
+        }
+      return 1e6 * Utilities::MPI::max(best, parallel_tools::communicator())
+             / n_cells;
+    };
+    VectorType residual, zero;
+    discretization.initialize_vector(zero);
+    const unsigned int all_threads = MultithreadInfo::n_threads();
+
+    struct Row
+    {
+      std::string name;
+      double      residual, jacobian;
+    };
+    std::vector<Row> rows;
+    rows.push_back({"floor kernel (1 thread)",
+                    time([&] { floor.assemble(u_all, false); }),
+                    time([&] { floor.assemble(u_all, true); })});
+    for (const unsigned int threads : {1u, all_threads})
+      {
+        MultithreadInfo::set_thread_limit(threads);
+        rows.push_back(
+          {"tissuefem, " + std::to_string(threads) + " thread(s)",
+           time([&] { solid.internal_force(u, residual); }),
+           time([&] {
+             solid.implicit_residual(u, zero, 0., 0., residual, true);
+           })});
+        if (threads == all_threads)
+          break;
+      }
+    MultithreadInfo::set_thread_limit(all_threads);
+
+    // The same numbers: f_int of both, relative to its largest entry.
+    solid.internal_force(u, residual);
+    double difference = 0, largest = 0;
+    for (const auto i : discretization.locally_owned)
+      {
+        difference = std::max(difference,
+                              std::abs(residual[i] - floor.residual()[i]));
+        largest    = std::max(largest, std::abs(floor.residual()[i]));
+      }
+    difference = Utilities::MPI::max(difference, parallel_tools::communicator());
+    largest    = Utilities::MPI::max(largest, parallel_tools::communicator());
+
+    screen << "Against the floor kernel (internal forces only; "
+           << parallel_tools::n_processes() << " MPI process(es); us per cell "
+           << "of the whole mesh; ";
+    if (parallel_tools::n_processes() == 1)
+      screen << "floor residual differs from tissuefem's by "
+             << std::scientific << std::setprecision(1)
+             << difference / largest << " relative):\n";
+    else
+      screen << "each process's floor sums only its own cells):\n";
+    screen
+           << std::defaultfloat << std::setw(32) << "" << std::setw(14)
+           << "residual" << std::setw(10) << "ratio" << std::setw(22)
+           << "residual + Jacobian" << std::setw(10) << "ratio"
+           << "\n";
+    for (const auto &row : rows)
+      screen << std::setw(32) << row.name << std::fixed << std::setprecision(2)
+             << std::setw(14) << row.residual << std::setw(10)
+             << row.residual / rows[0].residual << std::setw(22)
+             << row.jacobian << std::setw(10)
+             << row.jacobian / rows[0].jacobian << std::defaultfloat
+             << std::setprecision(6) << "\n";
   }
 
 
@@ -206,8 +325,8 @@ namespace tissuefem::problems
   void
   AssemblyBenchmark<dim>::run()
   {
-    std::cout << "Assembly benchmark: Jacobian + residual of one deformed "
-                 "state, serial, fastest of "
+    parallel_tools::screen() << "Assembly benchmark: Jacobian + residual of one deformed "
+                 "state, fastest of "
               << repetitions << " runs (wall time; ratios are the figure of "
               << "merit)." << std::endl;
     if (!Utilities::trim(hexahedra).empty())

@@ -209,6 +209,13 @@ namespace tissuefem::problems
            << solid->stored_energy(state.u);
     writer->summary_line(energy.str());
     screen << energy.str() << " (energy units, int Psi dV)" << std::endl;
+    Utilities::System::MemoryStats memory;
+    Utilities::System::get_memory_stats(memory);
+    const double peak_bytes =
+      Utilities::MPI::sum(1024. * memory.VmHWM, parallel_tools::communicator());
+    screen << "peak memory (resident, all processes): " << peak_bytes / 1e6
+           << " MB, " << peak_bytes / solid->n_dofs() << " bytes per unknown"
+           << std::endl;
     const auto &linear = linear_solver->statistics();
     screen << "linear solver: " << linear.solves << " solves, "
            << linear.iterations << " Krylov iterations, " << linear.setups

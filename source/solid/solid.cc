@@ -8,6 +8,9 @@
 #include <tissuefem/solid/quantities.h>
 #include <tissuefem/solid/solid.h>
 
+#include <Epetra_CrsMatrix.h>
+#include <Epetra_FEVector.h>
+
 #include <algorithm>
 #include <map>
 #include <numeric>
@@ -133,6 +136,64 @@ namespace tissuefem::solid
     fibre_field.build(discretization, materials);
     discretization.initialize_vector(ghosted_u, true);
     discretization.initialize_vector(ghosted_w, true);
+    build_direct_access();
+  }
+
+
+  template <int dim>
+  void
+  Solid<dim>::build_direct_access()
+  {
+    const unsigned int n       = cache.n_dofs;
+    const unsigned int n_cells = cache.cells().size();
+    const auto        &owned   = discretization.locally_owned;
+    const auto        &matrix  = jacobian_matrix.trilinos_matrix();
+    const auto        &ghosts  = ghosted_u.trilinos_vector().Map();
+    access.ghost_index.resize(n_cells * n);
+    access.direct.assign(n_cells, false);
+    access.row.assign(n_cells * n, -1);
+    access.entry.assign(n_cells * n * n, -1);
+    access.row_values.resize(matrix.NumMyRows());
+    for (int r = 0; r < matrix.NumMyRows(); ++r)
+      {
+        int     length;
+        double *values;
+        int    *columns;
+        matrix.ExtractMyRowView(r, length, values, columns);
+        access.row_values[r] = values;
+      }
+    for (unsigned int c = 0; c < n_cells; ++c)
+      {
+        const auto *dofs   = cache.dofs(c);
+        bool        direct = true;
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            access.ghost_index[c * n + i] = ghosts.LID(
+              static_cast<TrilinosWrappers::types::int_type>(dofs[i]));
+            direct = direct && owned.is_element(dofs[i])
+                     && !discretization.constraints.is_constrained(dofs[i]);
+          }
+        if (!direct)
+          continue;
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            const int r = owned.index_within_set(dofs[i]);
+            access.row[c * n + i] = r;
+            int     length;
+            double *values;
+            int    *columns;
+            matrix.ExtractMyRowView(r, length, values, columns);
+            for (unsigned int j = 0; j < n; ++j)
+              {
+                const int column = matrix.ColMap().LID(
+                  static_cast<TrilinosWrappers::types::int_type>(dofs[j]));
+                const int *found = std::find(columns, columns + length, column);
+                Assert(found != columns + length, ExcInternalError());
+                access.entry[(c * n + i) * n + j] = found - columns;
+              }
+          }
+        access.direct[c] = true;
+      }
   }
 
 
@@ -222,6 +283,13 @@ namespace tissuefem::solid
 
     std::vector<std::tuple<unsigned int, double, Point<dim>>> inverted;
 
+    // Raw local data of the ghosted arguments (see DirectAccess).
+    const double *u_values =
+      request.u ? request.u->trilinos_vector()[0] : nullptr;
+    const double *w_values =
+      request.inertia ? request.inertia->trilinos_vector()[0] : nullptr;
+    double *residual_values = residual.trilinos_vector()[0];
+
     auto worker = [&](const std::vector<unsigned int>::const_iterator &it,
                       Scratch<dim>                                    &s,
                       Copy                                            &copy) {
@@ -241,8 +309,9 @@ namespace tissuefem::solid
         for (unsigned int a = 0; a < dim; ++a)
           {
             const unsigned int i = cache.local_index[k * dim + a];
-            s.U[k][a] = request.internal ? (*request.u)[dofs[i]] : 0.;
-            s.W[k][a] = request.inertia ? (*request.inertia)[dofs[i]] : 0.;
+            const int g = access.ghost_index[c * n + i];
+            s.U[k][a]   = request.internal ? u_values[g] : 0.;
+            s.W[k][a]   = request.inertia ? w_values[g] : 0.;
           }
       const auto  &material = materials.material(cell->material_id());
       const double rho      = materials.density(cell->material_id());
@@ -388,6 +457,23 @@ namespace tissuefem::solid
           inverted.emplace_back(copy.cell_index,
                                 copy.inverted_det,
                                 cache.cells()[copy.cache_index]->center());
+          return;
+        }
+      const unsigned int c = copy.cache_index;
+      if (access.direct[c] && (!request.jacobian || request.rows == &discretization.constraints))
+        {
+          // Owned, unconstrained dofs only: add in place.
+          const int *row = &access.row[c * n];
+          for (unsigned int i = 0; i < n; ++i)
+            residual_values[row[i]] += copy.rhs[i];
+          if (request.jacobian)
+            for (unsigned int i = 0; i < n; ++i)
+              {
+                double    *values = access.row_values[row[i]];
+                const int *entry  = &access.entry[(c * n + i) * n];
+                for (unsigned int j = 0; j < n; ++j)
+                  values[entry[j]] += copy.matrix(i, j);
+              }
           return;
         }
       if (request.jacobian)

@@ -162,5 +162,26 @@ namespace tissuefem::solid
     bool                               body_force_present;
     /// Ghosted copies of the arguments, reused between calls.
     VectorType ghosted_u, ghosted_w;
+
+    /**
+     * Direct access, computed once per mesh: for each cached cell, the
+     * local index of each of its dofs in the ghosted vectors (gathers
+     * without global-to-local look-ups); and for cells whose dofs this
+     * process owns and which carry no constraint, where each element entry
+     * goes in the rows of the Trilinos matrix and residual, so that the
+     * copy into the global objects bypasses AffineConstraints and Epetra's
+     * index searches. Other cells take the general path.
+     */
+    struct DirectAccess
+    {
+      std::vector<int>      ghost_index; ///< [c * n + i]
+      std::vector<bool>     direct;      ///< [c]
+      std::vector<int>      row;         ///< [c * n + i], local row
+      std::vector<int>      entry;       ///< [c * n * n + i * n + j]
+      std::vector<double *> row_values;  ///< [local row]
+    } access;
+
+    void
+    build_direct_access();
   };
 } // namespace tissuefem::solid
