@@ -111,22 +111,21 @@ namespace tissuefem::adaptation
     discretization.initialize_vector(ghosted, true);
     ghosted = u;
     Vector<float> indicator(triangulation.n_active_cells());
-    KellyErrorEstimator<dim>::estimate(
-      *discretization.mapping,
-      dof_handler,
-      discretization.face_quadrature,
-      {},
-      ghosted,
-      indicator,
-      ComponentMask(),
-      nullptr,
-      numbers::invalid_unsigned_int,
-      Utilities::MPI::this_mpi_process(comm));
+    KellyErrorEstimator<dim>::estimate(*discretization.mapping,
+                                       dof_handler,
+                                       discretization.face_quadrature,
+                                       {},
+                                       ghosted,
+                                       indicator,
+                                       ComponentMask(),
+                                       nullptr,
+                                       numbers::invalid_unsigned_int,
+                                       Utilities::MPI::this_mpi_process(comm));
     Utilities::MPI::sum(indicator, comm, indicator);
 
-    const unsigned int max_cells = parameters.max_cells > 0 ?
-                                     parameters.max_cells :
-                                     std::numeric_limits<unsigned int>::max();
+    const unsigned int max_cells = parameters.max_cells > 0
+                                     ? parameters.max_cells
+                                     : std::numeric_limits<unsigned int>::max();
     if (parameters.strategy == "fixed number")
       GridRefinement::refine_and_coarsen_fixed_number(
         triangulation,
@@ -162,8 +161,8 @@ namespace tissuefem::adaptation
     everything.reinit(discretization.locally_owned,
                       complete_index_set(dof_handler.n_dofs()),
                       comm);
-    std::vector<Vector<double>> old_values(vectors.size(),
-                                           Vector<double>(dof_handler.n_dofs()));
+    std::vector<Vector<double>> old_values(
+      vectors.size(), Vector<double>(dof_handler.n_dofs()));
     for (unsigned int k = 0; k < vectors.size(); ++k)
       {
         everything = *vectors[k];
@@ -174,8 +173,8 @@ namespace tissuefem::adaptation
     transfer.prepare_for_coarsening_and_refinement(old_values);
     triangulation.execute_coarsening_and_refinement();
     solid.setup();
-    std::vector<Vector<double>> new_values(vectors.size(),
-                                           Vector<double>(dof_handler.n_dofs()));
+    std::vector<Vector<double>> new_values(
+      vectors.size(), Vector<double>(dof_handler.n_dofs()));
     transfer.interpolate(old_values, new_values);
     for (unsigned int k = 0; k < vectors.size(); ++k)
       {

@@ -223,8 +223,8 @@ namespace tissuefem::output
     VectorType u, v;
     d.initialize_vector(u, true);
     d.initialize_vector(v, true);
-    u = state.u;
-    v = state.v;
+    u                 = state.u;
+    v                 = state.v;
     const auto values = probes->evaluate(u);
 
     if (parallel_tools::is_root())
@@ -233,8 +233,8 @@ namespace tissuefem::output
           statistics_file << step << ',' << state.time << ',' << s.dt << ','
                           << s.newton_iterations << ',' << s.linear_iterations
                           << ',' << s.rejected_attempts << ','
-                          << s.residual_norm << ',' << s.assembly_seconds
-                          << ',' << s.solve_seconds << ',' << s.step_seconds
+                          << s.residual_norm << ',' << s.assembly_seconds << ','
+                          << s.solve_seconds << ',' << s.step_seconds
                           << std::endl;
         const bool summarize
           = summary.is_open() && step % parameters.summary_interval == 0;
@@ -299,9 +299,10 @@ namespace tissuefem::output
     Vector<float> jacobian, von_mises;
     solid::cell_fields(
       d, solid.get_materials(), solid.fibres(), u, jacobian, von_mises);
-    const bool finite = Utilities::MPI::min(
-      (all_finite(jacobian) && all_finite(von_mises)) ? 1 : 0,
-      parallel_tools::communicator());
+    const bool finite
+      = Utilities::MPI::min((all_finite(jacobian) && all_finite(von_mises)) ? 1
+                                                                            : 0,
+                            parallel_tools::communicator());
     if (!finite)
       throw SolverError("non-finite J or stress at step " + std::to_string(step)
                         + "; VTU file not written");
@@ -353,10 +354,9 @@ namespace tissuefem::output
       data_out.write_pvtu_record(out, pieces);
     });
     pvd_records.emplace_back(time, master);
-    write_whole(parameters.directory + "/solution.pvd",
-                [&](std::ostream &out) {
-                  DataOutBase::write_pvd_record(out, pvd_records);
-                });
+    write_whole(parameters.directory + "/solution.pvd", [&](std::ostream &out) {
+      DataOutBase::write_pvd_record(out, pvd_records);
+    });
   }
 
   template class OutputWriter<1>;

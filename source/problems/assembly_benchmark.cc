@@ -148,15 +148,15 @@ namespace tissuefem::problems
     VectorType u_tilde;
     discretization.initialize_vector(u_tilde);
 
-    parallel_tools::screen() << "\n"
-              << (cell_type == "simplex" ? "P1 simplices" : "Q1 hypercubes")
-              << ": " << triangulation.n_active_cells() << " cells, "
-              << u.size() << " unknowns, model '"
-              << material_parameters.model_names[0] << "'\n"
-              << std::setw(32) << "tangent" << std::setw(14) << "us per cell"
-              << std::setw(16) << "ratio to first" << std::setw(34)
-              << "max|K - K_first| / max|K_first|"
-              << "\n";
+    parallel_tools::screen()
+      << "\n"
+      << (cell_type == "simplex" ? "P1 simplices" : "Q1 hypercubes") << ": "
+      << triangulation.n_active_cells() << " cells, " << u.size()
+      << " unknowns, model '" << material_parameters.model_names[0] << "'\n"
+      << std::setw(32) << "tangent" << std::setw(14) << "us per cell"
+      << std::setw(16) << "ratio to first" << std::setw(34)
+      << "max|K - K_first| / max|K_first|"
+      << "\n";
 
     std::vector<std::pair<std::string, materials::TangentMethod>> methods
       = {{"automatic differentiation",
@@ -207,11 +207,11 @@ namespace tissuefem::problems
             diff.add(-1., reference);
             difference = diff.linfty_norm() / reference.linfty_norm();
           }
-        parallel_tools::screen() << std::setw(32) << name << std::fixed << std::setprecision(2)
-                  << std::setw(14) << per_cell << std::setw(16)
-                  << per_cell / hand_time << std::scientific
-                  << std::setprecision(1) << std::setw(34) << difference
-                  << std::defaultfloat << std::setprecision(6) << "\n";
+        parallel_tools::screen()
+          << std::setw(32) << name << std::fixed << std::setprecision(2)
+          << std::setw(14) << per_cell << std::setw(16) << per_cell / hand_time
+          << std::scientific << std::setprecision(1) << std::setw(34)
+          << difference << std::defaultfloat << std::setprecision(6) << "\n";
       }
     compare_with_floor(discretization, boundary_conditions, u);
   }
@@ -224,9 +224,9 @@ namespace tissuefem::problems
     boundary::BoundaryConditions<dim> &boundary_conditions,
     const VectorType                  &u) const
   {
-    auto        &screen  = parallel_tools::screen();
-    const double n_cells = discretization.dof_handler.get_triangulation()
-                             .n_active_cells();
+    auto        &screen = parallel_tools::screen();
+    const double n_cells
+      = discretization.dof_handler.get_triangulation().n_active_cells();
     materials::MaterialSet<dim> materials(material_parameters, prm);
     solid::Solid<dim> solid(discretization, materials, boundary_conditions);
     FloorKernel<dim>  floor(discretization, materials);
@@ -290,34 +290,32 @@ namespace tissuefem::problems
     double difference = 0, largest = 0;
     for (const auto i : discretization.locally_owned)
       {
-        difference = std::max(difference,
-                              std::abs(residual[i] - floor.residual()[i]));
-        largest    = std::max(largest, std::abs(floor.residual()[i]));
+        difference
+          = std::max(difference, std::abs(residual[i] - floor.residual()[i]));
+        largest = std::max(largest, std::abs(floor.residual()[i]));
       }
-    difference = Utilities::MPI::max(difference, parallel_tools::communicator());
-    largest    = Utilities::MPI::max(largest, parallel_tools::communicator());
+    difference
+      = Utilities::MPI::max(difference, parallel_tools::communicator());
+    largest = Utilities::MPI::max(largest, parallel_tools::communicator());
 
     screen << "Against the floor kernel (internal forces only; "
            << parallel_tools::n_processes() << " MPI process(es); us per cell "
            << "of the whole mesh; ";
     if (parallel_tools::n_processes() == 1)
-      screen << "floor residual differs from tissuefem's by "
-             << std::scientific << std::setprecision(1)
-             << difference / largest << " relative):\n";
+      screen << "floor residual differs from tissuefem's by " << std::scientific
+             << std::setprecision(1) << difference / largest << " relative):\n";
     else
       screen << "each process's floor sums only its own cells):\n";
-    screen
-           << std::defaultfloat << std::setw(32) << "" << std::setw(14)
+    screen << std::defaultfloat << std::setw(32) << "" << std::setw(14)
            << "residual" << std::setw(10) << "ratio" << std::setw(22)
            << "residual + Jacobian" << std::setw(10) << "ratio"
            << "\n";
     for (const auto &row : rows)
       screen << std::setw(32) << row.name << std::fixed << std::setprecision(2)
              << std::setw(14) << row.residual << std::setw(10)
-             << row.residual / rows[0].residual << std::setw(22)
-             << row.jacobian << std::setw(10)
-             << row.jacobian / rows[0].jacobian << std::defaultfloat
-             << std::setprecision(6) << "\n";
+             << row.residual / rows[0].residual << std::setw(22) << row.jacobian
+             << std::setw(10) << row.jacobian / rows[0].jacobian
+             << std::defaultfloat << std::setprecision(6) << "\n";
   }
 
 
@@ -325,10 +323,11 @@ namespace tissuefem::problems
   void
   AssemblyBenchmark<dim>::run()
   {
-    parallel_tools::screen() << "Assembly benchmark: Jacobian + residual of one deformed "
-                 "state, fastest of "
-              << repetitions << " runs (wall time; ratios are the figure of "
-              << "merit)." << std::endl;
+    parallel_tools::screen()
+      << "Assembly benchmark: Jacobian + residual of one deformed "
+         "state, fastest of "
+      << repetitions << " runs (wall time; ratios are the figure of "
+      << "merit)." << std::endl;
     if (!Utilities::trim(hexahedra).empty())
       benchmark_mesh("hypercube", hexahedra);
     if (!Utilities::trim(tetrahedra).empty())

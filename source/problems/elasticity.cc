@@ -56,7 +56,7 @@ namespace tissuefem::problems
     discretization = std::make_unique<solid::Discretization<dim>>(triangulation,
                                                                   fe_parameters,
                                                                   dim);
-    solid = std::make_unique<solid::Solid<dim>>(*discretization,
+    solid          = std::make_unique<solid::Solid<dim>>(*discretization,
                                                 *materials,
                                                 *boundary_conditions);
     {
@@ -88,10 +88,12 @@ namespace tissuefem::problems
               "Output/Reaction boundary ids",
               "boundary id " + std::to_string(id)
                 + " is on no boundary face of the mesh");
-    writer =
-      std::make_unique<output::OutputWriter<dim>>(output_parameters, *solid);
-    adaptation = std::make_unique<adaptation::MeshAdaptation<dim>>(
-      refinement_parameters, triangulation, *solid);
+    writer
+      = std::make_unique<output::OutputWriter<dim>>(output_parameters, *solid);
+    adaptation
+      = std::make_unique<adaptation::MeshAdaptation<dim>>(refinement_parameters,
+                                                          triangulation,
+                                                          *solid);
   }
 
 
@@ -142,7 +144,7 @@ namespace tissuefem::problems
            << solid->n_dofs();
     writer->summary_line(header.str());
 
-    TimerOutput timer(screen, TimerOutput::summary, TimerOutput::wall_times);
+    TimerOutput   timer(screen, TimerOutput::summary, TimerOutput::wall_times);
     time::Context context{*solid,
                           time_parameters,
                           newton_parameters,
@@ -174,8 +176,8 @@ namespace tissuefem::problems
         }
         ++step;
         TimerOutput::Scope scope(timer, "output");
-        const auto         reactions =
-          solid->reaction_forces(state.u, state.a, state.time, reaction_ids);
+        const auto         reactions
+          = solid->reaction_forces(state.u, state.a, state.time, reaction_ids);
         screen << "step " << std::setw(5) << step << "  t = " << std::setw(10)
                << state.time << "  dt = " << std::setw(10) << report.dt
                << "  Newton " << std::setw(2) << report.newton_iterations
@@ -196,8 +198,8 @@ namespace tissuefem::problems
       {
         std::ostringstream rest;
         rest << std::setprecision(4) << "distance from rest shape "
-             << solid::distance_from_rest_shape(*discretization, u)
-             << " min J " << solid::min_jacobian(*discretization, u);
+             << solid::distance_from_rest_shape(*discretization, u) << " min J "
+             << solid::min_jacobian(*discretization, u);
         writer->summary_line(rest.str());
         screen << rest.str()
                << " (largest vertex distance after the best rigid fit, "
@@ -211,17 +213,18 @@ namespace tissuefem::problems
     screen << energy.str() << " (energy units, int Psi dV)" << std::endl;
     Utilities::System::MemoryStats memory;
     Utilities::System::get_memory_stats(memory);
-    const double peak_bytes =
-      Utilities::MPI::sum(1024. * memory.VmHWM, parallel_tools::communicator());
+    const double peak_bytes
+      = Utilities::MPI::sum(1024. * memory.VmHWM,
+                            parallel_tools::communicator());
     screen << "peak memory (resident, all processes): " << peak_bytes / 1e6
            << " MB, " << peak_bytes / solid->n_dofs() << " bytes per unknown"
            << std::endl;
     const auto &linear = linear_solver->statistics();
     screen << "linear solver: " << linear.solves << " solves, "
            << linear.iterations << " Krylov iterations, " << linear.setups
-           << " symbolic factorizations or AMG builds ("
-           << linear.setup_seconds << " s), " << linear.factorizations
-           << " numeric factorizations" << std::endl;
+           << " symbolic factorizations or AMG builds (" << linear.setup_seconds
+           << " s), " << linear.factorizations << " numeric factorizations"
+           << std::endl;
   }
 
   template class Elasticity<1>;

@@ -84,8 +84,8 @@ namespace tissuefem::problems
                     for (unsigned int a = 0; a < dim; ++a)
                       for (unsigned int b = 0; b < dim; ++b)
                         cell_matrix[cache.local_index[k * dim + a] * n
-                                    + cache.local_index[l * dim + b]] +=
-                          (B[a][b] * g_l) * JxW;
+                                    + cache.local_index[l * dim + b]]
+                          += (B[a][b] * g_l) * JxW;
                   }
               }
           }

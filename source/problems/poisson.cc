@@ -317,10 +317,11 @@ namespace tissuefem::problems
         previous_l2 = l2;
         previous_h1 = h1;
       }
-    parallel_tools::screen() << table.str()
-              << "(errors are norms of u_h - u over the domain; rate = "
-                 "log2 of the ratio of successive errors, mesh size halved)"
-              << std::endl;
+    parallel_tools::screen()
+      << table.str()
+      << "(errors are norms of u_h - u over the domain; rate = "
+         "log2 of the ratio of successive errors, mesh size halved)"
+      << std::endl;
     if (summary.is_open())
       summary << table.str();
   }

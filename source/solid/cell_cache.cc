@@ -18,17 +18,16 @@ namespace tissuefem::solid
     local_index.assign(n_scalar * n_compon, 0);
     for (unsigned int i = 0; i < n_dofs; ++i)
       {
-        const auto [component, k] = fe.system_to_component_index(i);
+        const auto [component, k]             = fe.system_to_component_index(i);
         local_index[k * n_compon + component] = i;
       }
 
     FEValues<dim> fe_values(*discretization.mapping,
                             scalar,
                             discretization.cell_quadrature,
-                            update_values | update_gradients
-                              | update_JxW_values
-                              | (positions ? update_quadrature_points :
-                                             update_default));
+                            update_values | update_gradients | update_JxW_values
+                              | (positions ? update_quadrature_points
+                                           : update_default));
     owned_cells.clear();
     for (const auto &cell : discretization.dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())

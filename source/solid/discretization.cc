@@ -99,10 +99,11 @@ namespace tissuefem::solid
     DoFTools::make_hanging_node_constraints(dof_handler,
                                             hanging_node_constraints);
     hanging_node_constraints.close();
-    has_hanging_nodes =
-      Utilities::MPI::max(hanging_node_constraints.n_constraints() > 0 ? 1 : 0,
-                          parallel_tools::communicator())
-      == 1;
+    has_hanging_nodes
+      = Utilities::MPI::max(hanging_node_constraints.n_constraints() > 0 ? 1
+                                                                         : 0,
+                            parallel_tools::communicator())
+        == 1;
 
     constraints.clear();
     constraints.reinit(locally_relevant);
@@ -170,9 +171,8 @@ namespace tissuefem::solid
                   modes[2][dofs[i]] = (c == 0 ? -x[1] : x[0]);
                 if constexpr (dim == 3)
                   {
-                    const double rotation[3][3] = {{0, -x[2], x[1]},
-                                                   {x[2], 0, -x[0]},
-                                                   {-x[1], x[0], 0}};
+                    const double rotation[3][3]
+                      = {{0, -x[2], x[1]}, {x[2], 0, -x[0]}, {-x[1], x[0], 0}};
                     for (unsigned int r = 0; r < 3; ++r)
                       modes[3 + r][dofs[i]] = rotation[r][c];
                   }

@@ -17,7 +17,7 @@ namespace tissuefem::solid
                                   const VectorType          &u,
                                   const Callback            &f)
     {
-      FEValues<dim> fe_values(*discretization.mapping,
+      FEValues<dim>                    fe_values(*discretization.mapping,
                               *discretization.fe,
                               discretization.cell_quadrature,
                               update_gradients | update_JxW_values);
@@ -69,8 +69,8 @@ namespace tissuefem::solid
               Vector<float>                     &jacobian,
               Vector<float>                     &von_mises)
   {
-    const auto &triangulation = discretization.dof_handler.get_triangulation();
-    const double n_q          = discretization.cell_quadrature.size();
+    const auto  &triangulation = discretization.dof_handler.get_triangulation();
+    const double n_q           = discretization.cell_quadrature.size();
     jacobian.reinit(triangulation.n_active_cells());
     von_mises.reinit(triangulation.n_active_cells());
     for_each_deformation_gradient(
@@ -92,8 +92,8 @@ namespace tissuefem::solid
         // In 1D the only stress is uniaxial, whose von Mises value is
         // |sigma|; in 2D the in-plane (2 x 2) stress is used.
         von_mises[cell->active_cell_index()]
-          += (dim == 1 ? std::abs(sigma[0][0]) :
-                         std::sqrt(1.5 * scalar_product(deviator, deviator)))
+          += (dim == 1 ? std::abs(sigma[0][0])
+                       : std::sqrt(1.5 * scalar_product(deviator, deviator)))
              / n_q;
       });
   }
@@ -178,19 +178,19 @@ namespace tissuefem::solid
     return Utilities::MPI::max(distance, comm);
   }
 
-#define TISSUEFEM_INSTANTIATE(dim)                                         \
-  template double stored_energy<dim>(const Discretization<dim> &,          \
-                                     const materials::MaterialSet<dim> &,  \
-                                     const FibreField<dim> &,              \
-                                     const VectorType &);                  \
-  template void   cell_fields<dim>(const Discretization<dim> &,            \
+#define TISSUEFEM_INSTANTIATE(dim)                                           \
+  template double stored_energy<dim>(const Discretization<dim> &,            \
+                                     const materials::MaterialSet<dim> &,    \
+                                     const FibreField<dim> &,                \
+                                     const VectorType &);                    \
+  template void   cell_fields<dim>(const Discretization<dim> &,              \
                                  const materials::MaterialSet<dim> &,      \
                                  const FibreField<dim> &,                  \
                                  const VectorType &,                       \
                                  Vector<float> &,                          \
                                  Vector<float> &);                         \
-  template double min_jacobian<dim>(const Discretization<dim> &,           \
-                                    const VectorType &);                   \
+  template double min_jacobian<dim>(const Discretization<dim> &,             \
+                                    const VectorType &);                     \
   template double distance_from_rest_shape<dim>(const Discretization<dim> &, \
                                                 const VectorType &);
   TISSUEFEM_INSTANTIATE(1)

@@ -85,9 +85,9 @@ namespace tissuefem::solid
       std::vector<types::global_dof_index> dofs;
       /// Smallest det F of the cell where the model cannot represent
       /// inversion (1 if none is inverted).
-      double inverted_det = 1;
-      unsigned int cell_index  = 0;
-      unsigned int cache_index = 0;
+      double       inverted_det = 1;
+      unsigned int cell_index   = 0;
+      unsigned int cache_index  = 0;
     };
   } // namespace
 
@@ -116,18 +116,17 @@ namespace tissuefem::solid
   Solid<dim>::setup()
   {
     discretization.distribute(&boundary_conditions);
-    const auto &dof_handler = discretization.dof_handler;
-    TrilinosWrappers::SparsityPattern sparsity(
-      discretization.locally_owned,
-      discretization.locally_owned,
-      discretization.locally_relevant,
-      parallel_tools::communicator());
-    DoFTools::make_sparsity_pattern(
-      dof_handler,
-      sparsity,
-      discretization.constraints,
-      false,
-      Utilities::MPI::this_mpi_process(parallel_tools::communicator()));
+    const auto                       &dof_handler = discretization.dof_handler;
+    TrilinosWrappers::SparsityPattern sparsity(discretization.locally_owned,
+                                               discretization.locally_owned,
+                                               discretization.locally_relevant,
+                                               parallel_tools::communicator());
+    DoFTools::make_sparsity_pattern(dof_handler,
+                                    sparsity,
+                                    discretization.constraints,
+                                    false,
+                                    Utilities::MPI::this_mpi_process(
+                                      parallel_tools::communicator()));
     sparsity.compress();
     jacobian_matrix.reinit(sparsity);
     mass.reset();
@@ -177,7 +176,7 @@ namespace tissuefem::solid
           continue;
         for (unsigned int i = 0; i < n; ++i)
           {
-            const int r = owned.index_within_set(dofs[i]);
+            const int r           = owned.index_within_set(dofs[i]);
             access.row[c * n + i] = r;
             int     length;
             double *values;
@@ -262,14 +261,14 @@ namespace tissuefem::solid
   void
   Solid<dim>::assemble(const Request &request, VectorType &residual)
   {
-    const unsigned int n         = cache.n_dofs;
-    const unsigned int n_scalar  = cache.n_scalar;
-    const unsigned int n_q       = cache.n_q;
-    const auto        &fe        = *discretization.fe;
-    const auto         method    = materials.tangent_method();
-    const bool      edge_length = materials.edge_length_formulation();
-    const bool      neumann     = request.external
-                            && !boundary_conditions.neumann.empty();
+    const unsigned int n           = cache.n_dofs;
+    const unsigned int n_scalar    = cache.n_scalar;
+    const unsigned int n_q         = cache.n_q;
+    const auto        &fe          = *discretization.fe;
+    const auto         method      = materials.tangent_method();
+    const bool         edge_length = materials.edge_length_formulation();
+    const bool         neumann
+      = request.external && !boundary_conditions.neumann.empty();
     const AffineConstraints<double> &rows = *request.rows;
 
     boundary_conditions.set_time(request.time);
@@ -284,10 +283,10 @@ namespace tissuefem::solid
     std::vector<std::tuple<unsigned int, double, Point<dim>>> inverted;
 
     // Raw local data of the ghosted arguments (see DirectAccess).
-    const double *u_values =
-      request.u ? request.u->trilinos_vector()[0] : nullptr;
-    const double *w_values =
-      request.inertia ? request.inertia->trilinos_vector()[0] : nullptr;
+    const double *u_values
+      = request.u ? request.u->trilinos_vector()[0] : nullptr;
+    const double *w_values
+      = request.inertia ? request.inertia->trilinos_vector()[0] : nullptr;
     double *residual_values = residual.trilinos_vector()[0];
 
     auto worker = [&](const std::vector<unsigned int>::const_iterator &it,
@@ -309,13 +308,13 @@ namespace tissuefem::solid
         for (unsigned int a = 0; a < dim; ++a)
           {
             const unsigned int i = cache.local_index[k * dim + a];
-            const int g = access.ghost_index[c * n + i];
-            s.U[k][a]   = request.internal ? u_values[g] : 0.;
-            s.W[k][a]   = request.inertia ? w_values[g] : 0.;
+            const int          g = access.ghost_index[c * n + i];
+            s.U[k][a]            = request.internal ? u_values[g] : 0.;
+            s.W[k][a]            = request.inertia ? w_values[g] : 0.;
           }
-      const auto  &material = materials.material(cell->material_id());
-      const double rho      = materials.density(cell->material_id());
-      const bool   elastic  = request.internal && !edge_length;
+      const auto  &material      = materials.material(cell->material_id());
+      const double rho           = materials.density(cell->material_id());
+      const bool   elastic       = request.internal && !edge_length;
       const double mass_jacobian = request.mass_jacobian_coefficient * rho;
 
       Tensor<2, dim> P;
@@ -352,8 +351,9 @@ namespace tissuefem::solid
               load = rho * boundary_conditions.gravity;
               if (body_force_present)
                 {
-                  boundary_conditions.body_force->vector_value(
-                    cache.point(c, q), s.body_force);
+                  boundary_conditions.body_force->vector_value(cache.point(c,
+                                                                           q),
+                                                               s.body_force);
                   for (unsigned int d = 0; d < dim; ++d)
                     load[d] += s.body_force[d];
                 }
@@ -387,13 +387,12 @@ namespace tissuefem::solid
                   const unsigned int i = cache.local_index[k * dim + a];
                   for (unsigned int l = 0; l < n_scalar; ++l)
                     {
-                      const Tensor<1, dim> &g_l = cache.gradient(c, q, l);
-                      const double mass_kl = mass_jacobian * phi_k
+                      const Tensor<1, dim> &g_l     = cache.gradient(c, q, l);
+                      const double          mass_kl = mass_jacobian * phi_k
                                              * cache.values[q * n_scalar + l];
                       for (unsigned int b = 0; b < dim; ++b)
                         {
-                          const unsigned int j
-                            = cache.local_index[l * dim + b];
+                          const unsigned int j = cache.local_index[l * dim + b];
                           if (j < i)
                             continue;
                           double value = elastic ? B[a][b] * g_l : 0.;
@@ -460,7 +459,8 @@ namespace tissuefem::solid
           return;
         }
       const unsigned int c = copy.cache_index;
-      if (access.direct[c] && (!request.jacobian || request.rows == &discretization.constraints))
+      if (access.direct[c]
+          && (!request.jacobian || request.rows == &discretization.constraints))
         {
           // Owned, unconstrained dofs only: add in place.
           const int *row = &access.row[c * n];
@@ -519,8 +519,9 @@ namespace tissuefem::solid
     for (const auto &cell : cells)
       smallest = std::min(smallest, cell[1]);
     std::ostringstream message;
-    message << cells.size() << " element(s) inverted (smallest det F = "
-            << smallest << "): cell";
+    message << cells.size()
+            << " element(s) inverted (smallest det F = " << smallest
+            << "): cell";
     for (unsigned int i = 0; i < std::min<std::size_t>(cells.size(), 4); ++i)
       {
         message << (i ? ", " : " ") << static_cast<unsigned int>(cells[i][0])
@@ -616,29 +617,27 @@ namespace tissuefem::solid
     if (mass)
       return *mass;
     // Unconstrained: explicit methods and energies need every row.
-    TrilinosWrappers::SparsityPattern sparsity(
-      discretization.locally_owned,
-      discretization.locally_owned,
-      discretization.locally_relevant,
-      parallel_tools::communicator());
-    DoFTools::make_sparsity_pattern(
-      discretization.dof_handler,
-      sparsity,
-      no_constraints,
-      true,
-      Utilities::MPI::this_mpi_process(parallel_tools::communicator()));
+    TrilinosWrappers::SparsityPattern sparsity(discretization.locally_owned,
+                                               discretization.locally_owned,
+                                               discretization.locally_relevant,
+                                               parallel_tools::communicator());
+    DoFTools::make_sparsity_pattern(discretization.dof_handler,
+                                    sparsity,
+                                    no_constraints,
+                                    true,
+                                    Utilities::MPI::this_mpi_process(
+                                      parallel_tools::communicator()));
     sparsity.compress();
     mass.emplace();
     mass->reinit(sparsity);
-    const unsigned int n = cache.n_dofs, n_q = cache.n_q;
-    const unsigned int n_scalar = cache.n_scalar;
-    FullMatrix<double> cell_matrix(n, n);
+    const unsigned int                   n = cache.n_dofs, n_q = cache.n_q;
+    const unsigned int                   n_scalar = cache.n_scalar;
+    FullMatrix<double>                   cell_matrix(n, n);
     std::vector<types::global_dof_index> dofs(n);
     for (unsigned int c = 0; c < cache.cells().size(); ++c)
       {
-        const double rho
-          = materials.density(cache.cells()[c]->material_id());
-        cell_matrix = 0;
+        const double rho = materials.density(cache.cells()[c]->material_id());
+        cell_matrix      = 0;
         for (unsigned int q = 0; q < n_q; ++q)
           for (unsigned int k = 0; k < n_scalar; ++k)
             for (unsigned int l = 0; l < n_scalar; ++l)
@@ -648,7 +647,8 @@ namespace tissuefem::solid
                                  * cache.JxW(c)[q];
                 for (unsigned int a = 0; a < dim; ++a)
                   cell_matrix(cache.local_index[k * dim + a],
-                              cache.local_index[l * dim + a]) += m;
+                              cache.local_index[l * dim + a])
+                    += m;
               }
         std::copy(cache.dofs(c), cache.dofs(c) + n, dofs.begin());
         no_constraints.distribute_local_to_global(cell_matrix, dofs, *mass);
@@ -668,15 +668,14 @@ namespace tissuefem::solid
     // one, row k sums to int rho N_k dV.
     lumped.emplace();
     discretization.initialize_assembly_vector(*lumped);
-    const unsigned int n = cache.n_dofs, n_q = cache.n_q;
-    const unsigned int n_scalar = cache.n_scalar;
-    Vector<double>     cell_vector(n);
+    const unsigned int                   n = cache.n_dofs, n_q = cache.n_q;
+    const unsigned int                   n_scalar = cache.n_scalar;
+    Vector<double>                       cell_vector(n);
     std::vector<types::global_dof_index> dofs(n);
     for (unsigned int c = 0; c < cache.cells().size(); ++c)
       {
-        const double rho
-          = materials.density(cache.cells()[c]->material_id());
-        cell_vector = 0;
+        const double rho = materials.density(cache.cells()[c]->material_id());
+        cell_vector      = 0;
         for (unsigned int q = 0; q < n_q; ++q)
           for (unsigned int k = 0; k < n_scalar; ++k)
             for (unsigned int a = 0; a < dim; ++a)
@@ -697,7 +696,10 @@ namespace tissuefem::solid
     VectorType ghosted;
     discretization.initialize_vector(ghosted, true);
     make_ghosted(u, ghosted);
-    return solid::stored_energy(discretization, materials, fibre_field, ghosted);
+    return solid::stored_energy(discretization,
+                                materials,
+                                fibre_field,
+                                ghosted);
   }
 
 
@@ -710,8 +712,7 @@ namespace tissuefem::solid
     double             energy = 0;
     for (unsigned int c = 0; c < cache.cells().size(); ++c)
       {
-        const double rho
-          = materials.density(cache.cells()[c]->material_id());
+        const double rho = materials.density(cache.cells()[c]->material_id());
         for (unsigned int q = 0; q < n_q; ++q)
           {
             Tensor<1, dim> velocity;

@@ -112,7 +112,7 @@ namespace tissuefem::solvers
     std::unique_ptr<Epetra_MultiVector>                modes;
     std::vector<VectorType>                            mode_vectors;
     unsigned int                                       reference_iterations = 0;
-    unsigned int                                       components = 1;
+    unsigned int                                       components           = 1;
 
     ~Implementation()
     {
@@ -212,9 +212,10 @@ namespace tissuefem::solvers
               {
                 impl.problem.SetOperator(&M);
                 Amesos factory;
-                impl.amesos.reset(factory.Create(
-                  parameters.type == "MUMPS" ? "Amesos_Mumps" : "Amesos_Klu",
-                  impl.problem));
+                impl.amesos.reset(factory.Create(parameters.type == "MUMPS"
+                                                   ? "Amesos_Mumps"
+                                                   : "Amesos_Klu",
+                                                 impl.problem));
                 if (!impl.amesos)
                   throw SolverError("Amesos has no " + parameters.type);
                 if (impl.amesos->SymbolicFactorization() != 0)
@@ -223,9 +224,8 @@ namespace tissuefem::solvers
                 stats.setup_seconds += seconds_since(start);
               }
             impl.problem.SetLHS(&x.trilinos_vector());
-            impl.problem.SetRHS(
-              const_cast<Epetra_MultiVector *>(
-                static_cast<const Epetra_MultiVector *>(&b.trilinos_vector())));
+            impl.problem.SetRHS(const_cast<Epetra_MultiVector *>(
+              static_cast<const Epetra_MultiVector *>(&b.trilinos_vector())));
             if (impl.amesos->NumericFactorization() != 0)
               throw SolverError("numeric factorization failed (singular "
                                 "Jacobian?)");
@@ -294,8 +294,9 @@ namespace tissuefem::solvers
               data.set_parameters(list, unused, M);
               if (!impl.mode_vectors.empty())
                 {
-                  const auto &map = impl.mode_vectors[0].trilinos_vector().Map();
-                  impl.modes      = std::make_unique<Epetra_MultiVector>(
+                  const auto &map
+                    = impl.mode_vectors[0].trilinos_vector().Map();
+                  impl.modes = std::make_unique<Epetra_MultiVector>(
                     map, impl.mode_vectors.size());
                   for (unsigned int m = 0; m < impl.mode_vectors.size(); ++m)
                     for (int i = 0; i < map.NumMyElements(); ++i)
@@ -316,7 +317,7 @@ namespace tissuefem::solvers
               stats.setup_seconds += seconds_since(build_start);
             };
             auto cg_solve = [&]() {
-              SolverControl control(parameters.max_iterations,
+              SolverControl        control(parameters.max_iterations,
                                     parameters.relative_tolerance
                                       * b.l2_norm());
               SolverCG<VectorType> cg(control);
@@ -341,8 +342,8 @@ namespace tissuefem::solvers
                     && iterations > parameters.rebuild_factor
                                       * impl.reference_iterations))
               {
-                stats.iterations += std::min(iterations,
-                                             parameters.max_iterations);
+                stats.iterations
+                  += std::min(iterations, parameters.max_iterations);
                 build();
                 iterations = cg_solve();
               }

@@ -76,15 +76,13 @@ namespace tissuefem::solvers
   NewtonResult
   solve_newton(
     const NewtonParameters &parameters,
-    VectorType         &u,
-    const std::function<void(const VectorType &, VectorType &, bool)>
-      &assemble,
-    const std::function<void(VectorType &, const VectorType &)>
-      &solve_jacobian)
+    VectorType             &u,
+    const std::function<void(const VectorType &, VectorType &, bool)> &assemble,
+    const std::function<void(VectorType &, const VectorType &)> &solve_jacobian)
   {
     using Clock = std::chrono::steady_clock;
-    NewtonResult   result;
-    VectorType residual, update, trial, trial_residual, rhs;
+    NewtonResult result;
+    VectorType   residual, update, trial, trial_residual, rhs;
     update.reinit(u);
     trial.reinit(u);
     rhs.reinit(u);
@@ -184,7 +182,7 @@ namespace tissuefem::solvers
         result.failure.clear();
         u = trial;
         residual.swap(trial_residual);
-        norm     = checked_l2_norm(residual);
+        norm = checked_l2_norm(residual);
         result.residual_norms.push_back(norm);
         if (parameters.verbose)
           std::cout << "    Newton " << result.iterations << ": |R| = " << norm

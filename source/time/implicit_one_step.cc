@@ -18,7 +18,7 @@ namespace tissuefem::time
   StepReport
   ImplicitOneStep::advance(State &state, const double end_time)
   {
-    auto      &solid = context->solid;
+    auto      &solid         = context->solid;
     auto      &linear_solver = context->linear_solver;
     StepReport report;
     double     h = std::min(step_size, end_time - state.time);
@@ -31,7 +31,7 @@ namespace tissuefem::time
         const double c = mass_coefficient(h);
         predict(state, h, u_tilde, next.u);
         solid.apply_dirichlet_values(state.time + h, next.u);
-        const double t_new = state.time + h;
+        const double                t_new  = state.time + h;
         const solvers::NewtonResult result = solvers::solve_newton(
           context->newton,
           next.u,
@@ -65,8 +65,8 @@ namespace tissuefem::time
       }
     // Newton and linear iterations of all attempts, failed ones included:
     // they are what the step cost.
-    report.linear_iterations =
-      linear_solver.statistics().iterations - linear_before;
+    report.linear_iterations
+      = linear_solver.statistics().iterations - linear_before;
     next.time = state.time + h;
     // Newton leaves constrained entries alone; set hanging nodes (and the
     // prescribed values, unchanged) in the state.

@@ -60,9 +60,7 @@ namespace
     solid::FiniteElementParameters  fe_parameters;
     fe_parameters.parse_parameters(prm);
     solid::Discretization<2> discretization(triangulation, fe_parameters, 2);
-    solid::Solid<2>          solid(discretization,
-                          materials,
-                          boundary_conditions);
+    solid::Solid<2> solid(discretization, materials, boundary_conditions);
     solvers::NewtonParameters newton_parameters;
     newton_parameters.parse_parameters(prm);
     solvers::LinearSolverParameters linear_parameters;
@@ -98,7 +96,7 @@ int
 main(int argc, char **argv)
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  ParameterHandler prm;
+  ParameterHandler                 prm;
   declare_all_parameters(prm);
   prm.parse_input_from_string(scene);
   Vector<double> u_ad, u_hand;

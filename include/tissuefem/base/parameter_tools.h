@@ -120,8 +120,8 @@ namespace tissuefem
   double
   checked_l2_norm(const Vector &v)
   {
-    return all_finite(v) ? double(v.l2_norm()) :
-                           std::numeric_limits<double>::quiet_NaN();
+    return all_finite(v) ? double(v.l2_norm())
+                         : std::numeric_limits<double>::quiet_NaN();
   }
 
   /// Collapses new lines and runs of white space into single spaces.

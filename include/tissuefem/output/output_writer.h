@@ -51,7 +51,7 @@ namespace tissuefem::output
   class OutputWriter
   {
   public:
-    OutputWriter(const OutputParameters &parameters,
+    OutputWriter(const OutputParameters  &parameters,
                  const solid::Solid<dim> &solid);
 
     /// Creates the directory and files.

@@ -20,9 +20,9 @@ namespace tissuefem::problems
    * A hyperelastic body moving under boundary conditions and loads: read
    * parameters -> build the scene (mesh, materials, boundary conditions,
    * solid) -> the chosen integrator advances the state step by step ->
-   * each state goes to output -> the mesh adapts if asked. The mesh is shared by all MPI processes
-   * (parallel::shared::Triangulation, partitioned by METIS); each process
-   * assembles its own cells with several threads.
+   * each state goes to output -> the mesh adapts if asked. The mesh is shared
+   * by all MPI processes (parallel::shared::Triangulation, partitioned by
+   * METIS); each process assembles its own cells with several threads.
    */
   template <int dim>
   class Elasticity : public Interface
@@ -41,15 +41,15 @@ namespace tissuefem::problems
     run() override;
 
   private:
-    ParameterHandler               &prm;
-    geometry::GeometryParameters    geometry_parameters;
-    solid::FiniteElementParameters  fe_parameters;
-    materials::MaterialParameters   material_parameters;
-    boundary::BoundaryParameters    boundary_parameters;
-    time::TimeParameters            time_parameters;
-    solvers::NewtonParameters       newton_parameters;
-    solvers::LinearSolverParameters linear_solver_parameters;
-    output::OutputParameters        output_parameters;
+    ParameterHandler                    &prm;
+    geometry::GeometryParameters         geometry_parameters;
+    solid::FiniteElementParameters       fe_parameters;
+    materials::MaterialParameters        material_parameters;
+    boundary::BoundaryParameters         boundary_parameters;
+    time::TimeParameters                 time_parameters;
+    solvers::NewtonParameters            newton_parameters;
+    solvers::LinearSolverParameters      linear_solver_parameters;
+    output::OutputParameters             output_parameters;
     adaptation::MeshRefinementParameters refinement_parameters;
 
     parallel::shared::Triangulation<dim>               triangulation;

@@ -38,10 +38,10 @@ namespace tissuefem::solid
       return owned_cells;
     }
 
-    unsigned int n_q       = 0; ///< quadrature points per cell
-    unsigned int n_scalar  = 0; ///< scalar shape functions per cell
-    unsigned int n_dofs    = 0; ///< n_scalar * components
-    unsigned int n_compon  = 0; ///< components of the element
+    unsigned int n_q      = 0; ///< quadrature points per cell
+    unsigned int n_scalar = 0; ///< scalar shape functions per cell
+    unsigned int n_dofs   = 0; ///< n_scalar * components
+    unsigned int n_compon = 0; ///< components of the element
     /// local_index[k * n_compon + c]: the element's dof of scalar node k
     /// and component c.
     std::vector<unsigned int> local_index;

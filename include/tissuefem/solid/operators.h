@@ -25,7 +25,7 @@ namespace tissuefem::solid
    * that integrators are written once.
    *
    * Constrained degrees of freedom (Dirichlet components, hanging nodes)
-   * are handled here: residuals have zero rows there, Jacobians unit
+   * are handled here: residuals have zero rows there, Jacobians non-zero
    * diagonals, so that Newton updates obey homogeneous constraints.
    */
   class Operators
@@ -66,28 +66,34 @@ namespace tissuefem::solid
                       const double      mass_coefficient,
                       const double      time,
                       VectorType       &residual,
-                      const bool        with_jacobian) = 0;
+                      const bool        with_jacobian)
+      = 0;
 
     /// The Jacobian of the last implicit_residual() call that asked for it.
     virtual MatrixType &
-    jacobian() = 0;
+    jacobian()
+      = 0;
 
     /// f_int(u) alone (no matrix): what explicit methods evaluate. Rows of
     /// constrained degrees of freedom are included.
     virtual void
-    internal_force(const VectorType &u, VectorType &force) = 0;
+    internal_force(const VectorType &u, VectorType &force)
+      = 0;
 
     /// f_ext(t) (rows of constrained degrees of freedom included).
     virtual void
-    external_force(const double time, VectorType &force) = 0;
+    external_force(const double time, VectorType &force)
+      = 0;
 
     /// The consistent mass matrix, assembled on first use.
     virtual const MatrixType &
-    mass_matrix() = 0;
+    mass_matrix()
+      = 0;
 
     /// The row-sum lumped mass (one entry per degree of freedom).
     virtual const VectorType &
-    lumped_mass() = 0;
+    lumped_mass()
+      = 0;
 
     /// int Psi(F(u)) dV (energy units).
     virtual double
@@ -95,7 +101,8 @@ namespace tissuefem::solid
 
     /// 1/2 v^T M v with the consistent mass (energy units).
     virtual double
-    kinetic_energy(const VectorType &v) = 0;
+    kinetic_energy(const VectorType &v)
+      = 0;
 
     /**
      * The force each boundary in @p boundary_ids applies to the body, for
@@ -107,6 +114,7 @@ namespace tissuefem::solid
     reaction_forces(const VectorType                      &u,
                     const VectorType                      &acceleration,
                     const double                           time,
-                    const std::vector<types::boundary_id> &boundary_ids) = 0;
+                    const std::vector<types::boundary_id> &boundary_ids)
+      = 0;
   };
 } // namespace tissuefem::solid

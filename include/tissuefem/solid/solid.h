@@ -98,11 +98,11 @@ namespace tissuefem::solid
     kinetic_energy(const VectorType &v) override;
 
     std::vector<double>
-    reaction_forces(const VectorType                      &u,
-                    const VectorType                      &acceleration,
-                    const double                           time,
-                    const std::vector<types::boundary_id> &boundary_ids)
-      override;
+    reaction_forces(
+      const VectorType                      &u,
+      const VectorType                      &acceleration,
+      const double                           time,
+      const std::vector<types::boundary_id> &boundary_ids) override;
 
     const Discretization<dim> &
     get_discretization() const
@@ -131,14 +131,14 @@ namespace tissuefem::solid
     /// What one assembly pass computes.
     struct Request
     {
-      const VectorType          *u       = nullptr; ///< ghosted
-      const VectorType          *inertia = nullptr; ///< ghosted w in M w
-      double                     mass_jacobian_coefficient = 0;
-      double                     time                      = 0;
-      bool                       internal                  = true;
-      bool                       external                  = true;
-      bool                       jacobian                  = false;
-      const AffineConstraints<double> *rows = nullptr;
+      const VectorType                *u       = nullptr; ///< ghosted
+      const VectorType                *inertia = nullptr; ///< ghosted w in M w
+      double                           mass_jacobian_coefficient = 0;
+      double                           time                      = 0;
+      bool                             internal                  = true;
+      bool                             external                  = true;
+      bool                             jacobian                  = false;
+      const AffineConstraints<double> *rows                      = nullptr;
     };
 
     /// @p ghosted = @p u with hanging-node values set from their parents.

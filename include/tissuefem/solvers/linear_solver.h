@@ -36,7 +36,7 @@ namespace tissuefem::solvers
     unsigned int setups = 0;
     /// Numeric factorizations (direct solvers).
     unsigned int factorizations = 0;
-    double       setup_seconds = 0;
+    double       setup_seconds  = 0;
   };
 
   /**

@@ -53,9 +53,8 @@ namespace tissuefem::solvers
   NewtonResult
   solve_newton(
     const NewtonParameters &parameters,
-    VectorType         &u,
-    const std::function<void(const VectorType &, VectorType &, bool)>
-      &assemble,
+    VectorType             &u,
+    const std::function<void(const VectorType &, VectorType &, bool)> &assemble,
     const std::function<void(VectorType &, const VectorType &)>
       &solve_jacobian);
 } // namespace tissuefem::solvers

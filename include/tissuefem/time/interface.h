@@ -77,12 +77,14 @@ namespace tissuefem::time
     /// Called once before the first step, with the initial state (u, v set
     /// and satisfying the boundary conditions at its time); may set a.
     virtual void
-    initialize(Context &context, State &state) = 0;
+    initialize(Context &context, State &state)
+      = 0;
 
     /// Advances @p state by one step, not beyond @p end_time. Throws
     /// SolverError when it cannot.
     virtual StepReport
-    advance(State &state, const double end_time) = 0;
+    advance(State &state, const double end_time)
+      = 0;
 
     /// Vectors the integrator keeps besides the state (older steps), which
     /// must be transferred when the mesh changes.
