@@ -4,6 +4,7 @@
 
 #include <tissuefem/base/input_error.h>
 #include <tissuefem/base/parameter_tools.h>
+#include <tissuefem/base/timing.h>
 #include <tissuefem/solvers/linear_solver.h>
 
 #include <Amesos.h>
@@ -76,18 +77,6 @@ namespace tissuefem::solvers
             "'UMFPACK' runs on one MPI process only; use 'MUMPS' or 'cg amg' "
             "with mpirun");
   }
-
-
-  namespace
-  {
-    double
-    seconds_since(const std::chrono::steady_clock::time_point start)
-    {
-      return std::chrono::duration<double>(std::chrono::steady_clock::now()
-                                           - start)
-        .count();
-    }
-  } // namespace
 
 
   /// The state each kind of solver keeps between solves.

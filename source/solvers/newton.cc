@@ -1,5 +1,6 @@
 #include <tissuefem/base/input_error.h>
 #include <tissuefem/base/parameter_tools.h>
+#include <tissuefem/base/timing.h>
 #include <tissuefem/solvers/newton.h>
 
 #include <chrono>
@@ -59,18 +60,6 @@ namespace tissuefem::solvers
     verbose                     = prm.get_bool("Verbose");
     prm.leave_subsection();
   }
-
-
-  namespace
-  {
-    double
-    seconds_since(const std::chrono::steady_clock::time_point start)
-    {
-      return std::chrono::duration<double>(std::chrono::steady_clock::now()
-                                           - start)
-        .count();
-    }
-  } // namespace
 
 
   NewtonResult
