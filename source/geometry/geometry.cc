@@ -6,6 +6,7 @@
 #include <tissuefem/base/input_error.h>
 #include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/geometry/geometry.h>
+#include <tissuefem/geometry/vtu_reader.h>
 
 #include <filesystem>
 #include <fstream>
@@ -47,10 +48,15 @@ namespace tissuefem::geometry
       prm.declare_entry("Mesh file",
                         "",
                         Patterns::Anything(),
-                        "For 'file': a mesh read by deal.II's GridIn, chosen "
-                        "by extension: .msh (Gmsh 1.0 or 2.x ASCII), .vtk, "
-                        ".inp (Abaqus). A relative path is taken relative to "
-                        "the parameter file's directory.");
+                        "For 'file': a mesh chosen by extension: .msh (Gmsh "
+                        "1.0 or 2.x ASCII), .vtk (legacy VTK), .inp (Abaqus), "
+                        "all read by deal.II's GridIn, or .vtu (VTK XML "
+                        "UnstructuredGrid, ASCII: tetrahedra/hexahedra, "
+                        "triangles/quadrilaterals; material ids from an "
+                        "integer cell array 'MaterialIds', 'material_id', "
+                        "'materialID' or 'gmsh:physical', boundary ids from "
+                        "the same array on face cells). A relative path is "
+                        "taken relative to the parameter file's directory.");
       prm.declare_entry("Scale",
                         "1",
                         Patterns::Double(0),
@@ -172,6 +178,13 @@ namespace tissuefem::geometry
 
     template <int dim>
     void
+    read_with_grid_in(const std::string  &file,
+                      const std::string  &extension,
+                      Triangulation<dim> &triangulation);
+
+
+    template <int dim>
+    void
     read_mesh_file(const GeometryParameters &parameters,
                    Triangulation<dim>       &triangulation)
     {
@@ -181,8 +194,28 @@ namespace tissuefem::geometry
               "Geometry/Mesh file",
               "cannot open '" + file + "'");
       const std::string extension = std::filesystem::path(file).extension();
-      GridIn<dim>       grid_in(triangulation);
-      std::ifstream     in(file);
+      if (extension == ".vtu")
+        read_vtu(file, triangulation);
+      else
+        read_with_grid_in(file, extension, triangulation);
+      require(triangulation.n_active_cells() > 0,
+              "Geometry/Mesh file",
+              "'" + file + "' holds no cells of dimension "
+                + std::to_string(dim));
+      if (parameters.scale != 1.)
+        GridTools::scale(parameters.scale, triangulation);
+    }
+
+
+    /// Gmsh, legacy VTK and Abaqus files through deal.II's GridIn.
+    template <int dim>
+    void
+    read_with_grid_in(const std::string  &file,
+                      const std::string  &extension,
+                      Triangulation<dim> &triangulation)
+    {
+      GridIn<dim>   grid_in(triangulation);
+      std::ifstream in(file);
       try
         {
           if (extension == ".msh")
@@ -195,19 +228,13 @@ namespace tissuefem::geometry
             throw InputError("Parameter 'Geometry/Mesh file': unknown "
                              "extension '"
                              + extension + "' of '" + file
-                             + "' (use .msh, .vtk or .inp)");
+                             + "' (use .msh, .vtk, .vtu or .inp)");
         }
       catch (const ExceptionBase &e)
         {
           throw InputError("Mesh file '" + file
                            + "' could not be read: " + one_line_message(e));
         }
-      require(triangulation.n_active_cells() > 0,
-              "Geometry/Mesh file",
-              "'" + file + "' holds no cells of dimension "
-                + std::to_string(dim));
-      if (parameters.scale != 1.)
-        GridTools::scale(parameters.scale, triangulation);
     }
 
 

@@ -26,7 +26,8 @@ namespace tissuefem::geometry
    *
    * Throws InputError, naming the file and the problem in one line, for
    * binary or appended data, missing arrays, wrong counts, non-numeric
-   * text, out-of-range point indices or ids, unsupported cell types and
+   * text, point indices out of range, ids outside 0..254, unsupported cell
+   * types, simplices mixed with hypercubes, degenerate simplices and
    * in 1D.
    */
   template <int dim>
