@@ -460,7 +460,8 @@ namespace tissuefem::solid
         }
       const unsigned int c = copy.cache_index;
       if (access.direct[c]
-          && (!request.jacobian || request.rows == &discretization.constraints))
+          && (!request.jacobian || request.rows == &discretization.constraints
+              || request.rows == &lifting_constraints))
         {
           // Owned, unconstrained dofs only: add in place.
           const int *row = &access.row[c * n];
@@ -477,8 +478,12 @@ namespace tissuefem::solid
           return;
         }
       if (request.jacobian)
-        rows.distribute_local_to_global(
-          copy.matrix, copy.rhs, copy.dofs, jacobian_matrix, residual);
+        rows.distribute_local_to_global(copy.matrix,
+                                        copy.rhs,
+                                        copy.dofs,
+                                        jacobian_matrix,
+                                        residual,
+                                        request.inhomogeneous);
       else
         rows.distribute_local_to_global(copy.rhs, copy.dofs, residual);
     };
@@ -580,6 +585,61 @@ namespace tissuefem::solid
     request.time                      = time;
     request.jacobian                  = with_jacobian;
     request.rows                      = &discretization.constraints;
+    assemble(request, residual);
+  }
+
+
+  template <int dim>
+  void
+  Solid<dim>::implicit_residual_lifting(const VectorType &u,
+                                        const VectorType &u_tilde,
+                                        const double      mass_coefficient,
+                                        const double      time,
+                                        VectorType       &residual)
+  {
+    make_ghosted(u, ghosted_u);
+    // deal.II adds -J_ij e_j to row i for an inhomogeneity e_j of a
+    // constrained dof j, and diag_j e_j to row j; with e = u - g that is
+    // R + J d and -diag d for d = g - u.
+    std::map<types::global_dof_index, double> values;
+    for (auto &d : boundary_conditions.dirichlet)
+      {
+        d.displacement->set_time(time);
+        VectorTools::interpolate_boundary_values(*discretization.mapping,
+                                                 discretization.dof_handler,
+                                                 d.id,
+                                                 *d.displacement,
+                                                 values,
+                                                 d.mask);
+      }
+    const auto &hanging = discretization.hanging_node_constraints;
+    lifting_constraints.clear();
+    lifting_constraints.reinit(discretization.locally_relevant);
+    lifting_constraints.merge(hanging);
+    for (const auto &[dof, value] : values)
+      if (discretization.locally_relevant.is_element(dof)
+          && !hanging.is_constrained(dof))
+        {
+          lifting_constraints.add_line(dof);
+          lifting_constraints.set_inhomogeneity(dof, ghosted_u[dof] - value);
+        }
+    lifting_constraints.close();
+
+    Request request;
+    request.u = &ghosted_u;
+    if (mass_coefficient != 0)
+      {
+        VectorType w(u);
+        w -= u_tilde;
+        w *= mass_coefficient;
+        ghosted_w       = w;
+        request.inertia = &ghosted_w;
+      }
+    request.mass_jacobian_coefficient = mass_coefficient;
+    request.time                      = time;
+    request.jacobian                  = true;
+    request.rows                      = &lifting_constraints;
+    request.inhomogeneous             = true;
     assemble(request, residual);
   }
 

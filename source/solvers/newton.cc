@@ -39,6 +39,16 @@ namespace tissuefem::solvers
                       "Halvings of the Newton update tried while the residual "
                       "norm does not decrease; the last one is taken even if "
                       "it does not. 0 takes full steps.");
+    prm.declare_entry(
+      "Lift boundary increments",
+      "true",
+      Patterns::Bool(),
+      "Start each step with one Newton iteration that takes the change of "
+      "the prescribed displacements as inhomogeneous constraints of the "
+      "update, so the boundary motion spreads into the body through the "
+      "Jacobian (as FEniCS and FEBio do). 'false' writes the new boundary "
+      "values into the initial guess, which distorts the layer of elements "
+      "next to a moving boundary and can cost several damped iterations.");
     prm.declare_entry("Verbose",
                       "false",
                       Patterns::Bool(),
@@ -58,6 +68,7 @@ namespace tissuefem::solvers
     update_tolerance            = prm.get_double("Update tolerance");
     max_line_search_steps       = prm.get_integer("Line search steps");
     verbose                     = prm.get_bool("Verbose");
+    lift_boundary_increments    = prm.get_bool("Lift boundary increments");
     prm.leave_subsection();
   }
 

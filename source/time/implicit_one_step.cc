@@ -1,4 +1,5 @@
 #include <tissuefem/base/input_error.h>
+#include <tissuefem/base/timing.h>
 #include <tissuefem/time/implicit_one_step.h>
 
 #include <iostream>
@@ -12,6 +13,38 @@ namespace tissuefem::time
     context   = &c;
     step_size = c.time.time_step;
     c.solid.initialize_vector(state.a);
+  }
+
+
+  void
+  ImplicitOneStep::lift_boundary_increment(const double mass_coefficient,
+                                           const double time,
+                                           VectorType  &u,
+                                           StepReport  &report)
+  {
+    auto      &solid = context->solid;
+    VectorType residual, rhs, update;
+    try
+      {
+        auto start = std::chrono::steady_clock::now();
+        solid.implicit_residual_lifting(
+          u, u_tilde, mass_coefficient, time, residual);
+        report.assembly_seconds += seconds_since(start);
+        rhs.reinit(u);
+        rhs.equ(-1., residual);
+        update.reinit(u);
+        start = std::chrono::steady_clock::now();
+        context->linear_solver.solve(solid.jacobian(), update, rhs);
+        report.solve_seconds += seconds_since(start);
+        u += update;
+        ++report.newton_iterations;
+      }
+    catch (const SolverError &)
+      {
+        // A guess the model cannot evaluate (inverted elements), or a
+        // singular Jacobian: Newton starts from the guess with the new
+        // boundary values written in, and may halve the step.
+      }
   }
 
 
@@ -30,8 +63,10 @@ namespace tissuefem::time
       {
         const double c = mass_coefficient(h);
         predict(state, h, u_tilde, next.u);
-        solid.apply_dirichlet_values(state.time + h, next.u);
-        const double                t_new  = state.time + h;
+        const double t_new = state.time + h;
+        if (context->newton.lift_boundary_increments)
+          lift_boundary_increment(c, t_new, next.u, report);
+        solid.apply_dirichlet_values(t_new, next.u);
         const solvers::NewtonResult result = solvers::solve_newton(
           context->newton,
           next.u,

@@ -69,6 +69,23 @@ namespace tissuefem::solid
                       const bool        with_jacobian)
       = 0;
 
+    /**
+     * For a state @p u whose prescribed entries still hold earlier values:
+     * the Jacobian J = c M + K(u) of implicit_residual() and a residual
+     * with the Dirichlet increment d = g(time) - u (on the prescribed
+     * entries) lifted into it, R(u) + J d on the free rows and -diag d on
+     * the prescribed ones, so that the update du solving J du = -R has
+     * du = d there and carries the boundary motion into the body linearly
+     * (the first iteration of a Newton method with inhomogeneous
+     * constraints), instead of a boundary layer of distorted elements.
+     */
+    virtual void
+    implicit_residual_lifting(const VectorType &u,
+                              const VectorType &u_tilde,
+                              const double      mass_coefficient,
+                              const double      time,
+                              VectorType       &residual) = 0;
+
     /// The Jacobian of the last implicit_residual() call that asked for it.
     virtual MatrixType &
     jacobian()

@@ -73,6 +73,13 @@ namespace tissuefem::solid
                       VectorType       &residual,
                       const bool        with_jacobian) override;
 
+    void
+    implicit_residual_lifting(const VectorType &u,
+                              const VectorType &u_tilde,
+                              const double      mass_coefficient,
+                              const double      time,
+                              VectorType       &residual) override;
+
     MatrixType &
     jacobian() override
     {
@@ -139,6 +146,8 @@ namespace tissuefem::solid
       bool                             external                  = true;
       bool                             jacobian                  = false;
       const AffineConstraints<double> *rows                      = nullptr;
+      /// Whether the inhomogeneities of @p rows enter the residual.
+      bool inhomogeneous = false;
     };
 
     /// @p ghosted = @p u with hanging-node values set from their parents.
@@ -156,6 +165,8 @@ namespace tissuefem::solid
     CellCache<dim>                     cache;
     FibreField<dim>                    fibre_field;
     AffineConstraints<double>          no_constraints;
+    /// Constraints with the Dirichlet increment (implicit_residual_lifting).
+    AffineConstraints<double> lifting_constraints;
     MatrixType                         jacobian_matrix;
     std::optional<MatrixType>          mass;
     std::optional<VectorType>          lumped;

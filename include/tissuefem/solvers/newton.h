@@ -25,6 +25,7 @@ namespace tissuefem::solvers
     double       relative_residual_tolerance;
     double       update_tolerance;
     unsigned int max_line_search_steps;
+    bool         lift_boundary_increments;
     bool         verbose;
   };
 

@@ -11,7 +11,10 @@ namespace tissuefem::time
    *   c M (u - u_tilde) + f_int(u) - f_ext(t_{n+1}) = 0
    *
    * for u = u_{n+1}, solved by Newton's method: a derived class supplies
-   * c, u_tilde and the initial guess, and v, a once u is known. A step whose
+   * c, u_tilde and the initial guess, and v, a once u is known. Unless
+   * 'Lift boundary increments' is off, the guess is first improved by one
+   * Newton iteration that carries the boundary motion of the step into the
+   * body through the Jacobian. A step whose
    * Newton iteration fails is retried with half the step size, at most
    * 'Maximum step halvings' times; after a reduced step the step size grows
    * back by factors of two towards 'Time step'.
@@ -45,6 +48,16 @@ namespace tissuefem::time
            State            &new_state) const = 0;
 
     Context *context = nullptr;
+
+    /// One Newton iteration from the guess @p u with the change of the
+    /// prescribed values as inhomogeneous constraints of the update
+    /// (Operators::implicit_residual_lifting); leaves @p u unchanged if the
+    /// guess cannot be evaluated.
+    void
+    lift_boundary_increment(const double mass_coefficient,
+                            const double time,
+                            VectorType  &u,
+                            StepReport  &report);
 
   private:
     double     step_size = 0;
