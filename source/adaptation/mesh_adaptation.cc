@@ -165,6 +165,9 @@ namespace tissuefem::adaptation
       vectors.size(), Vector<double>(dof_handler.n_dofs()));
     for (unsigned int k = 0; k < vectors.size(); ++k)
       {
+        // Hanging values exactly as the constraints compute them, so that
+        // the interpolation from either side of a refined edge agrees.
+        discretization.hanging_node_constraints.distribute(*vectors[k]);
         everything = *vectors[k];
         for (types::global_dof_index i = 0; i < dof_handler.n_dofs(); ++i)
           old_values[k][i] = everything[i];
