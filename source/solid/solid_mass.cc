@@ -1,0 +1,140 @@
+// The solid's mass and energy operators: consistent and lumped mass,
+// stored and kinetic energy (what explicit integrators and energy reports
+// need; see solid.cc for assembly of forces and Jacobians).
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
+
+#include <tissuefem/solid/quantities.h>
+#include <tissuefem/solid/solid.h>
+
+namespace tissuefem::solid
+{
+  template <int dim>
+  const MatrixType &
+  Solid<dim>::mass_matrix()
+  {
+    if (mass)
+      return *mass;
+    // Unconstrained: explicit methods and energies need every row.
+    TrilinosWrappers::SparsityPattern sparsity(discretization.locally_owned,
+                                               discretization.locally_owned,
+                                               discretization.locally_relevant,
+                                               parallel_tools::communicator());
+    DoFTools::make_sparsity_pattern(discretization.dof_handler,
+                                    sparsity,
+                                    no_constraints,
+                                    true,
+                                    Utilities::MPI::this_mpi_process(
+                                      parallel_tools::communicator()));
+    sparsity.compress();
+    mass.emplace();
+    mass->reinit(sparsity);
+    const unsigned int                   n = cache.n_dofs, n_q = cache.n_q;
+    const unsigned int                   n_scalar = cache.n_scalar;
+    FullMatrix<double>                   cell_matrix(n, n);
+    std::vector<types::global_dof_index> dofs(n);
+    for (unsigned int c = 0; c < cache.cells().size(); ++c)
+      {
+        const double rho = materials.density(cache.cells()[c]->material_id());
+        cell_matrix      = 0;
+        for (unsigned int q = 0; q < n_q; ++q)
+          for (unsigned int k = 0; k < n_scalar; ++k)
+            for (unsigned int l = 0; l < n_scalar; ++l)
+              {
+                const double m = rho * cache.values[q * n_scalar + k]
+                                 * cache.values[q * n_scalar + l]
+                                 * cache.JxW(c)[q];
+                for (unsigned int a = 0; a < dim; ++a)
+                  cell_matrix(cache.local_index[k * dim + a],
+                              cache.local_index[l * dim + a])
+                    += m;
+              }
+        std::copy(cache.dofs(c), cache.dofs(c) + n, dofs.begin());
+        no_constraints.distribute_local_to_global(cell_matrix, dofs, *mass);
+      }
+    mass->compress(VectorOperation::add);
+    return *mass;
+  }
+
+
+  template <int dim>
+  const VectorType &
+  Solid<dim>::lumped_mass()
+  {
+    if (lumped)
+      return *lumped;
+    // Row sums of the consistent mass: since the shape functions sum to
+    // one, row k sums to int rho N_k dV.
+    lumped.emplace();
+    discretization.initialize_assembly_vector(*lumped);
+    const unsigned int                   n = cache.n_dofs, n_q = cache.n_q;
+    const unsigned int                   n_scalar = cache.n_scalar;
+    Vector<double>                       cell_vector(n);
+    std::vector<types::global_dof_index> dofs(n);
+    for (unsigned int c = 0; c < cache.cells().size(); ++c)
+      {
+        const double rho = materials.density(cache.cells()[c]->material_id());
+        cell_vector      = 0;
+        for (unsigned int q = 0; q < n_q; ++q)
+          for (unsigned int k = 0; k < n_scalar; ++k)
+            for (unsigned int a = 0; a < dim; ++a)
+              cell_vector[cache.local_index[k * dim + a]]
+                += rho * cache.values[q * n_scalar + k] * cache.JxW(c)[q];
+        std::copy(cache.dofs(c), cache.dofs(c) + n, dofs.begin());
+        no_constraints.distribute_local_to_global(cell_vector, dofs, *lumped);
+      }
+    lumped->compress(VectorOperation::add);
+    return *lumped;
+  }
+
+
+  template <int dim>
+  double
+  Solid<dim>::stored_energy(const VectorType &u) const
+  {
+    VectorType ghosted;
+    discretization.initialize_vector(ghosted, true);
+    make_ghosted(u, ghosted);
+    return solid::stored_energy(discretization,
+                                materials,
+                                fibre_field,
+                                ghosted);
+  }
+
+
+  template <int dim>
+  double
+  Solid<dim>::kinetic_energy(const VectorType &v)
+  {
+    make_ghosted(v, ghosted_w);
+    const unsigned int n_q = cache.n_q, n_scalar = cache.n_scalar;
+    double             energy = 0;
+    for (unsigned int c = 0; c < cache.cells().size(); ++c)
+      {
+        const double rho = materials.density(cache.cells()[c]->material_id());
+        for (unsigned int q = 0; q < n_q; ++q)
+          {
+            Tensor<1, dim> velocity;
+            for (unsigned int k = 0; k < n_scalar; ++k)
+              for (unsigned int a = 0; a < dim; ++a)
+                velocity[a]
+                  += cache.values[q * n_scalar + k]
+                     * ghosted_w[cache.dofs(c)[cache.local_index[k * dim + a]]];
+            energy += 0.5 * rho * velocity.norm_square() * cache.JxW(c)[q];
+          }
+      }
+    return Utilities::MPI::sum(energy, parallel_tools::communicator());
+  }
+
+
+  // The class is instantiated in solid.cc; these members here.
+#define TISSUEFEM_INSTANTIATE(dim)                                     \
+  template const MatrixType &Solid<dim>::mass_matrix();                \
+  template const VectorType &Solid<dim>::lumped_mass();                \
+  template double Solid<dim>::stored_energy(const VectorType &) const; \
+  template double Solid<dim>::kinetic_energy(const VectorType &);
+  TISSUEFEM_INSTANTIATE(1)
+  TISSUEFEM_INSTANTIATE(2)
+  TISSUEFEM_INSTANTIATE(3)
+#undef TISSUEFEM_INSTANTIATE
+} // namespace tissuefem::solid
