@@ -205,8 +205,8 @@ namespace tissuefem::solid
 
 
   template <int dim>
-  void
-  Solid<dim>::apply_dirichlet_values(const double time, VectorType &u) const
+  std::map<types::global_dof_index, double>
+  Solid<dim>::dirichlet_values(const double time) const
   {
     std::map<types::global_dof_index, double> values;
     for (auto &d : boundary_conditions.dirichlet)
@@ -219,7 +219,15 @@ namespace tissuefem::solid
                                                  values,
                                                  d.mask);
       }
-    for (const auto &[dof, value] : values)
+    return values;
+  }
+
+
+  template <int dim>
+  void
+  Solid<dim>::apply_dirichlet_values(const double time, VectorType &u) const
+  {
+    for (const auto &[dof, value] : dirichlet_values(time))
       if (discretization.locally_owned.is_element(dof)
           && !discretization.hanging_node_constraints.is_constrained(dof))
         u[dof] = value;
@@ -561,13 +569,11 @@ namespace tissuefem::solid
 
 
   template <int dim>
-  void
-  Solid<dim>::implicit_residual(const VectorType &u,
-                                const VectorType &u_tilde,
-                                const double      mass_coefficient,
-                                const double      time,
-                                VectorType       &residual,
-                                const bool        with_jacobian)
+  typename Solid<dim>::Request
+  Solid<dim>::implicit_request(const VectorType &u,
+                               const VectorType &u_tilde,
+                               const double      mass_coefficient,
+                               const double      time)
   {
     make_ghosted(u, ghosted_u);
     Request request;
@@ -583,8 +589,22 @@ namespace tissuefem::solid
       }
     request.mass_jacobian_coefficient = mass_coefficient;
     request.time                      = time;
-    request.jacobian                  = with_jacobian;
-    request.rows                      = &discretization.constraints;
+    return request;
+  }
+
+
+  template <int dim>
+  void
+  Solid<dim>::implicit_residual(const VectorType &u,
+                                const VectorType &u_tilde,
+                                const double      mass_coefficient,
+                                const double      time,
+                                VectorType       &residual,
+                                const bool        with_jacobian)
+  {
+    Request request  = implicit_request(u, u_tilde, mass_coefficient, time);
+    request.jacobian = with_jacobian;
+    request.rows     = &discretization.constraints;
     assemble(request, residual);
   }
 
@@ -597,26 +617,15 @@ namespace tissuefem::solid
                                         const double      time,
                                         VectorType       &residual)
   {
-    make_ghosted(u, ghosted_u);
+    Request request = implicit_request(u, u_tilde, mass_coefficient, time);
     // deal.II adds -J_ij e_j to row i for an inhomogeneity e_j of a
     // constrained dof j, and diag_j e_j to row j; with e = u - g that is
     // R + J d and -diag d for d = g - u.
-    std::map<types::global_dof_index, double> values;
-    for (auto &d : boundary_conditions.dirichlet)
-      {
-        d.displacement->set_time(time);
-        VectorTools::interpolate_boundary_values(*discretization.mapping,
-                                                 discretization.dof_handler,
-                                                 d.id,
-                                                 *d.displacement,
-                                                 values,
-                                                 d.mask);
-      }
     const auto &hanging = discretization.hanging_node_constraints;
     lifting_constraints.clear();
     lifting_constraints.reinit(discretization.locally_relevant);
     lifting_constraints.merge(hanging);
-    for (const auto &[dof, value] : values)
+    for (const auto &[dof, value] : dirichlet_values(time))
       if (discretization.locally_relevant.is_element(dof)
           && !hanging.is_constrained(dof))
         {
@@ -624,22 +633,9 @@ namespace tissuefem::solid
           lifting_constraints.set_inhomogeneity(dof, ghosted_u[dof] - value);
         }
     lifting_constraints.close();
-
-    Request request;
-    request.u = &ghosted_u;
-    if (mass_coefficient != 0)
-      {
-        VectorType w(u);
-        w -= u_tilde;
-        w *= mass_coefficient;
-        ghosted_w       = w;
-        request.inertia = &ghosted_w;
-      }
-    request.mass_jacobian_coefficient = mass_coefficient;
-    request.time                      = time;
-    request.jacobian                  = true;
-    request.rows                      = &lifting_constraints;
-    request.inhomogeneous             = true;
+    request.jacobian      = true;
+    request.rows          = &lifting_constraints;
+    request.inhomogeneous = true;
     assemble(request, residual);
   }
 

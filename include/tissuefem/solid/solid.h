@@ -10,6 +10,7 @@
 #include <tissuefem/solid/fibre_field.h>
 #include <tissuefem/solid/operators.h>
 
+#include <map>
 #include <optional>
 
 namespace tissuefem::solid
@@ -150,6 +151,18 @@ namespace tissuefem::solid
       bool inhomogeneous = false;
     };
 
+    /// The prescribed displacement of every Dirichlet dof at @p time.
+    std::map<types::global_dof_index, double>
+    dirichlet_values(const double time) const;
+
+    /// A request for the implicit-step residual: ghosted u, and the
+    /// inertial vector w = c (u - u_tilde) when c != 0.
+    Request
+    implicit_request(const VectorType &u,
+                     const VectorType &u_tilde,
+                     const double      mass_coefficient,
+                     const double      time);
+
     /// @p ghosted = @p u with hanging-node values set from their parents.
     void
     make_ghosted(const VectorType &u, VectorType &ghosted) const;
@@ -167,10 +180,10 @@ namespace tissuefem::solid
     AffineConstraints<double>          no_constraints;
     /// Constraints with the Dirichlet increment (implicit_residual_lifting).
     AffineConstraints<double> lifting_constraints;
-    MatrixType                         jacobian_matrix;
-    std::optional<MatrixType>          mass;
-    std::optional<VectorType>          lumped;
-    bool                               body_force_present;
+    MatrixType                jacobian_matrix;
+    std::optional<MatrixType> mass;
+    std::optional<VectorType> lumped;
+    bool                      body_force_present;
     /// Ghosted copies of the arguments, reused between calls.
     VectorType ghosted_u, ghosted_w;
 
