@@ -129,8 +129,18 @@ namespace tissuefem::problems
   Elasticity<dim>::run()
   {
     setup();
-    writer->open();
     auto &screen = parallel_tools::screen();
+    // The integrator may still reject its input (an explicit step above
+    // the critical one): before any file exists.
+    time::Context context{*solid,
+                          time_parameters,
+                          newton_parameters,
+                          *linear_solver};
+    time::State   state;
+    solid->initial_state(state.u, state.v);
+    solid->apply_dirichlet_values(0., state.u);
+    integrator->initialize(context, state);
+    writer->open();
 
     screen << "tissuefem: " << dim << "D elasticity, "
            << triangulation.n_active_cells() << " cells, " << solid->n_dofs()
@@ -145,14 +155,6 @@ namespace tissuefem::problems
     writer->summary_line(header.str());
 
     TimerOutput   timer(screen, TimerOutput::summary, TimerOutput::wall_times);
-    time::Context context{*solid,
-                          time_parameters,
-                          newton_parameters,
-                          *linear_solver};
-    time::State   state;
-    solid->initial_state(state.u, state.v);
-    solid->apply_dirichlet_values(0., state.u);
-    integrator->initialize(context, state);
     const auto &reaction_ids = output_parameters.reaction_boundary_ids;
     writer->write_step(
       0,

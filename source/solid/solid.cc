@@ -1,6 +1,7 @@
 #include <deal.II/base/work_stream.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_values.h>
+#include <deal.II/grid/grid_tools.h>
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 #include <deal.II/numerics/vector_tools.h>
 
@@ -193,6 +194,14 @@ namespace tissuefem::solid
           }
         access.direct[c] = true;
       }
+  }
+
+
+  template <int dim>
+  double
+  Solid<dim>::length_scale() const
+  {
+    return GridTools::diameter(discretization.dof_handler.get_triangulation());
   }
 
 

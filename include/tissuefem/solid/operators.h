@@ -40,6 +40,11 @@ namespace tissuefem::solid
     virtual types::global_dof_index
     n_dofs() const = 0;
 
+    /// The diameter of the reference body (length units): a scale against
+    /// which integrators judge displacements.
+    virtual double
+    length_scale() const = 0;
+
     /// Sets the constrained entries of @p u: Dirichlet values at @p time,
     /// hanging nodes from their parents.
     virtual void
@@ -84,7 +89,8 @@ namespace tissuefem::solid
                               const VectorType &u_tilde,
                               const double      mass_coefficient,
                               const double      time,
-                              VectorType       &residual) = 0;
+                              VectorType       &residual)
+      = 0;
 
     /// The Jacobian of the last implicit_residual() call that asked for it.
     virtual MatrixType &

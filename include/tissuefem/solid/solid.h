@@ -57,6 +57,9 @@ namespace tissuefem::solid
       return discretization.n_dofs();
     }
 
+    double
+    length_scale() const override;
+
     void
     apply_dirichlet_values(const double time, VectorType &u) const override;
 

@@ -1,0 +1,299 @@
+#include <tissuefem/base/input_error.h>
+#include <tissuefem/base/parameter_tools.h>
+#include <tissuefem/base/timing.h>
+#include <tissuefem/time/interface.h>
+
+#include <cmath>
+#include <iomanip>
+
+namespace tissuefem::time
+{
+  /**
+   * Jeffrey's damped explicit scheme with variable step (report eqs 10-11
+   * and appendix A; solved for the new position as ERRATA, Jeffrey item 9,
+   * gives it): with the row-sum lumped mass m, mass-proportional damping
+   * gamma = c m, the old step dt and the new step eta dt,
+   *
+   *   u+ = [eta (eta + 1) dt^2 F / m + (2 (eta + 1) - c (eta^2 - 1) dt) u
+   *         - eta (2 - c eta dt) u-] / (2 + c dt),   F = f_ext(t) - f_int(u),
+   *
+   * which for eta = 1 is the damped central difference, second-order
+   * accurate. Only internal forces are evaluated (no matrix, no solve).
+   * The first step starts from u- = u0 - dt v0 + dt^2/2 a0 with a0 from the
+   * equation of motion. At start the critical step 2/omega_max (sqrt(1 +
+   * xi^2) - xi), xi = c/(2 omega_max), is estimated by power iteration on
+   * M^-1 K (K applied as differences of internal forces) and printed; a
+   * larger 'Time step' is refused unless 'Allow unstable step' is set. A
+   * run stops at the first step whose displacement is not finite, exceeds
+   * a thousand times the body's size, or whose stored plus kinetic energy
+   * grows a hundredfold within one step.
+   * Row-sum lumping is positive for P1 and Q_k elements; it is not for P2
+   * tetrahedra, which are refused. The velocity reported at t_{n+1} is
+   * (u_{n+1} - u_n)/h, the acceleration that of t_n.
+   */
+  class DampedCentralDifference : public Interface
+  {
+  public:
+    explicit DampedCentralDifference(const ParameterHandler &prm)
+    {
+      auto &p = const_cast<ParameterHandler &>(prm);
+      p.enter_subsection("Time integration");
+      p.enter_subsection("Damped central difference");
+      damping        = p.get_double("Damping ratio");
+      allow_unstable = p.get_bool("Allow unstable step");
+      p.leave_subsection();
+      p.leave_subsection();
+      require(std::isfinite(damping) && damping >= 0,
+              "Time integration/Damped central difference/Damping ratio",
+              "must be >= 0");
+    }
+
+    static void
+    declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Damped central difference");
+      prm.declare_entry("Damping ratio",
+                        "0",
+                        Patterns::Double(0),
+                        "Mass-proportional damping gamma/m (1/s if SI): the "
+                        "damping force on node i is -gamma_i v_i with "
+                        "gamma_i = ratio * m_i (Jeffrey eq 10).");
+      prm.declare_entry("Allow unstable step",
+                        "false",
+                        Patterns::Bool(),
+                        "Run even if 'Time step' exceeds the estimated "
+                        "critical step (to study instability); the run "
+                        "then stops when the energy blows up.");
+      prm.leave_subsection();
+    }
+
+    void
+    initialize(Context &c, State &state) override
+    {
+      context     = &c;
+      auto &solid = c.solid;
+      mass        = &solid.lumped_mass();
+      for (unsigned int i = 0; i < local_size(state.u); ++i)
+        if (!(local(*mass)[i] > 0))
+          throw InputError("Parameter 'Time integration/Integrator': the "
+                           "row-sum lumped mass is not positive at some "
+                           "node (P2 simplices); use linear elements or an "
+                           "implicit integrator");
+      // u- from a Taylor expansion backwards with the initial acceleration.
+      const double dt = c.time.time_step;
+      VectorType   a;
+      acceleration(state.u, state.v, state.time, a);
+      previous = state.u;
+      previous.add(-dt, state.v, 0.5 * dt * dt, a);
+      previous_step = dt;
+      state.a       = a;
+
+      critical_step = estimate_critical_step(state.u);
+      parallel_tools::screen()
+        << "damped central difference: estimated critical step "
+        << critical_step << " (time units; largest angular frequency "
+        << omega_max << " rad per time unit), step " << dt << std::endl;
+      if (dt > critical_step && !allow_unstable)
+        throw InputError(
+          "Parameter 'Time integration/Time step': " + std::to_string(dt)
+          + " exceeds the estimated critical step "
+          + std::to_string(critical_step)
+          + " of the explicit scheme (set 'Time integration/Damped central "
+            "difference/Allow unstable step' to run anyway)");
+      energy = total_energy(state.u, state.v);
+    }
+
+    StepReport
+    advance(State &state, const double end_time) override
+    {
+      auto        &solid = context->solid;
+      StepReport   report;
+      const double h = std::min(context->time.time_step, end_time - state.time);
+      const double dt  = previous_step;
+      const double eta = h / dt;
+      const double c   = damping;
+
+      // F = f_ext(t) - f_int(u), the force at the current time.
+      const auto start = std::chrono::steady_clock::now();
+      VectorType force, external;
+      solid.internal_force(state.u, force);
+      solid.external_force(state.time, external);
+      force.sadd(-1., 1., external);
+      report.assembly_seconds = seconds_since(start);
+
+      VectorType    next(state.u);
+      double       *x           = local(next);
+      const double *u           = local(state.u);
+      const double *um          = local(previous);
+      const double *f           = local(force);
+      const double *m           = local(*mass);
+      const double  denominator = 2. + c * dt;
+      for (unsigned int i = 0; i < local_size(next); ++i)
+        x[i] = (eta * (eta + 1) * dt * dt * f[i] / m[i]
+                + (2. * (eta + 1) - c * (eta * eta - 1) * dt) * u[i]
+                - eta * (2. - c * eta * dt) * um[i])
+               / denominator;
+      solid.apply_dirichlet_values(state.time + h, next);
+
+      // The acceleration at t (F/m - c v), v at t from appendix A.
+      VectorType a(force);
+      double    *ap = local(a);
+      for (unsigned int i = 0; i < local_size(a); ++i)
+        ap[i] = f[i] / m[i]
+                - c * (x[i] + (eta * eta - 1) * u[i] - eta * eta * um[i])
+                    / (eta * (eta + 1) * dt);
+
+      VectorType v(next);
+      v -= state.u;
+      v /= h;
+      previous      = state.u;
+      previous_step = h;
+      state.u.swap(next);
+      state.v.swap(v);
+      state.a.swap(a);
+      state.time += h;
+      report.dt = h;
+
+      if (!all_finite(state.u))
+        throw SolverError("the explicit scheme diverged at t = "
+                          + std::to_string(state.time) + " (step "
+                          + std::to_string(h) + ", estimated critical step "
+                          + std::to_string(critical_step)
+                          + "); nothing was written for this step");
+      // Slow exponential growth (a step just above the critical one) never
+      // jumps a hundredfold in one step; no stable motion of a solid
+      // carries it a thousand times its size away.
+      if (state.u.linfty_norm() > 1e3 * solid.length_scale())
+        throw SolverError("the explicit scheme is unstable at t = "
+                          + std::to_string(state.time)
+                          + ": displacements exceed 1000 times the body's "
+                            "size (step "
+                          + std::to_string(h) + ", estimated critical step "
+                          + std::to_string(critical_step) + ")");
+      const double new_energy = total_energy(state.u, state.v);
+      if (energy > 0 && new_energy > 100. * energy)
+        throw SolverError(
+          "the explicit scheme is unstable at t = " + std::to_string(state.time)
+          + ": stored plus kinetic energy grew from " + std::to_string(energy)
+          + " to " + std::to_string(new_energy) + " in one step (step "
+          + std::to_string(h) + ", estimated critical step "
+          + std::to_string(critical_step) + ")");
+      energy = new_energy;
+      return report;
+    }
+
+    std::vector<VectorType *>
+    history() override
+    {
+      return {&previous};
+    }
+
+    void
+    mesh_changed() override
+    {
+      mass = &context->solid.lumped_mass();
+    }
+
+  private:
+    double            damping        = 0;
+    bool              allow_unstable = false;
+    Context          *context        = nullptr;
+    const VectorType *mass           = nullptr;
+    VectorType        previous;
+    double            previous_step = 0;
+    double            critical_step = 0;
+    double            omega_max     = 0;
+    double            energy        = 0;
+
+    static double *
+    local(VectorType &v)
+    {
+      return v.trilinos_vector()[0];
+    }
+    static const double *
+    local(const VectorType &v)
+    {
+      return v.trilinos_vector()[0];
+    }
+    static unsigned int
+    local_size(const VectorType &v)
+    {
+      return v.locally_owned_size();
+    }
+
+    /// a = (f_ext(t) - f_int(u) - c m v) / m.
+    void
+    acceleration(const VectorType &u,
+                 const VectorType &v,
+                 const double      time,
+                 VectorType       &a) const
+    {
+      VectorType external;
+      context->solid.internal_force(u, a);
+      context->solid.external_force(time, external);
+      a.sadd(-1., 1., external);
+      double       *ap = local(a);
+      const double *vp = local(v);
+      const double *m  = local(*mass);
+      for (unsigned int i = 0; i < local_size(a); ++i)
+        ap[i] = ap[i] / m[i] - damping * vp[i];
+    }
+
+    double
+    total_energy(const VectorType &u, const VectorType &v)
+    {
+      return context->solid.stored_energy(u) + context->solid.kinetic_energy(v);
+    }
+
+    /**
+     * omega_max^2 = largest eigenvalue of M^-1 K(u), by power iteration
+     * with K w ~ (f_int(u + e w) - f_int(u)) / e on the free entries;
+     * 10 % is added for the estimate's shortfall.
+     */
+    double
+    estimate_critical_step(const VectorType &u)
+    {
+      auto      &solid = context->solid;
+      VectorType w(u), base, shifted, trial;
+      solid.internal_force(u, base);
+      // A deterministic start with every mode in it.
+      double *wp = local(w);
+      for (unsigned int i = 0; i < local_size(w); ++i)
+        wp[i] = 1. + 0.37 * std::sin(1.7 * (i + 1) + w.local_range().first);
+      solid.zero_constrained_entries(w);
+      double lambda = 0;
+      for (unsigned int k = 0; k < 40; ++k)
+        {
+          const double norm = w.l2_norm();
+          if (!(norm > 0))
+            break;
+          w /= norm;
+          const double e = 1e-7 * (1. + u.linfty_norm());
+          trial          = u;
+          trial.add(e, w);
+          solid.internal_force(trial, shifted);
+          shifted -= base;
+          shifted /= e;
+          double       *sp = local(shifted);
+          const double *m  = local(*mass);
+          for (unsigned int i = 0; i < local_size(shifted); ++i)
+            sp[i] /= m[i];
+          solid.zero_constrained_entries(shifted);
+          lambda = shifted * w;
+          w      = shifted;
+        }
+      omega_max = std::sqrt(std::max(lambda, 0.) * 1.1);
+      if (!(omega_max > 0))
+        return std::numeric_limits<double>::infinity();
+      const double xi = damping / (2. * omega_max);
+      return 2. / omega_max * (std::sqrt(1. + xi * xi) - xi);
+    }
+  };
+
+  TISSUEFEM_REGISTER_INTEGRATOR(
+    DampedCentralDifference,
+    "damped central difference",
+    "Jeffrey's explicit scheme (report eqs 10-11) with lumped mass, "
+    "mass-proportional damping and variable step; conditionally stable, "
+    "second order.")
+} // namespace tissuefem::time

@@ -1,0 +1,149 @@
+// The damped central difference (Jeffrey eq 11) on a single degree of
+// freedom with a known solution: a 1D bar of one linear element, clamped at
+// x = 0, linear elastic (E = 1, nu = 0, rho = 1), so that the free node
+// obeys m u'' + c m u' + k u = 0 with the lumped mass m = 1/2 and k = 1
+// (omega^2 = 2), started from u = 0.01 at rest. Its exact motion is
+// u(t) = 0.01 e^{-ct/2} (cos w t + c/(2w) sin w t), w^2 = 2 - c^2/4. The
+// errors at t = 1 for steps 0.05, 0.025, 0.0125 must decrease with observed
+// order 2 (within 0.2), undamped and damped (c = 0.5); with a step ratio
+// eta != 1 on the last step (end time not a multiple of the step) as well.
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <tissuefem/base/application.h>
+#include <tissuefem/boundary/boundary_conditions.h>
+#include <tissuefem/geometry/geometry.h>
+#include <tissuefem/materials/material_set.h>
+#include <tissuefem/solid/discretization.h>
+#include <tissuefem/solid/solid.h>
+#include <tissuefem/solvers/linear_solver.h>
+#include <tissuefem/solvers/newton.h>
+#include <tissuefem/time/interface.h>
+
+#include "../tests.h"
+
+#include <cmath>
+#include <iostream>
+#include <sstream>
+
+using namespace dealii;
+using namespace tissuefem;
+
+namespace
+{
+  const char *scene = R"(
+    set Dimension = 1
+    subsection Geometry
+      set Lower corner = 0
+      set Upper corner = 1
+      set Subdivisions = 1
+    end
+    subsection Materials
+      set Model = linear elastic
+      set Young's modulus = 1
+      set Poisson's ratio = 0
+      set Density = 1
+    end
+    subsection Boundary conditions
+      set Dirichlet = 0: x: 0
+      set Initial displacement = 0.01*x
+    end
+    subsection Time integration
+      set Integrator = damped central difference
+    end
+  )";
+
+  /// The displacement of the free node at @p end_time.
+  double
+  run(ParameterHandler &prm, const double step, const double end_time)
+  {
+    prm.enter_subsection("Time integration");
+    prm.set("Time step", step);
+    prm.set("End time", end_time);
+    prm.leave_subsection();
+    geometry::GeometryParameters geometry_parameters;
+    geometry_parameters.parse_parameters(prm);
+    Triangulation<1> triangulation;
+    geometry::build_triangulation(geometry_parameters, triangulation);
+    materials::MaterialParameters material_parameters;
+    material_parameters.parse_parameters(prm);
+    materials::MaterialSet<1>    materials(material_parameters, prm);
+    boundary::BoundaryParameters boundary_parameters;
+    boundary_parameters.parse_parameters(prm);
+    boundary::BoundaryConditions<1> boundary_conditions(boundary_parameters);
+    solid::FiniteElementParameters  fe_parameters;
+    fe_parameters.parse_parameters(prm);
+    solid::Discretization<1> discretization(triangulation, fe_parameters, 1);
+    solid::Solid<1>      solid(discretization, materials, boundary_conditions);
+    time::TimeParameters time_parameters;
+    time_parameters.parse_parameters(prm);
+    solvers::NewtonParameters newton_parameters;
+    newton_parameters.parse_parameters(prm);
+    solvers::LinearSolverParameters linear_parameters;
+    linear_parameters.parse_parameters(prm);
+    solvers::LinearSolver linear_solver(linear_parameters);
+    time::Context         context{solid,
+                          time_parameters,
+                          newton_parameters,
+                          linear_solver};
+    auto                  integrator
+      = time::IntegratorRegistry::instance().create(time_parameters.integrator,
+                                                    prm);
+    time::State state;
+    solid.initial_state(state.u, state.v);
+    solid.apply_dirichlet_values(0., state.u);
+    integrator->initialize(context, state);
+    while (state.time < end_time * (1 - 1e-12))
+      integrator->advance(state, end_time);
+    return state.u.linfty_norm();
+  }
+
+  double
+  exact(const double c, const double t)
+  {
+    const double w = std::sqrt(2. - c * c / 4.);
+    return 0.01 * std::exp(-c * t / 2.)
+           * (std::cos(w * t) + c / (2. * w) * std::sin(w * t));
+  }
+} // namespace
+
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  ParameterHandler                 prm;
+  declare_all_parameters(prm);
+  prm.parse_input_from_string(scene);
+
+  for (const double c : {0., 0.5})
+    for (const double end_time : {1., 1.03})
+      {
+        prm.enter_subsection("Time integration");
+        prm.enter_subsection("Damped central difference");
+        prm.set("Damping ratio", c);
+        prm.leave_subsection();
+        prm.leave_subsection();
+        std::vector<double> errors;
+        // The integrator's report of the critical step goes to the screen
+        // (std::cout), which is this test's compared output: discard it.
+        std::ostringstream discarded;
+        std::streambuf    *screen = std::cout.rdbuf(discarded.rdbuf());
+        for (const double step : {0.05, 0.025, 0.0125})
+          errors.push_back(std::abs(std::abs(run(prm, step, end_time))
+                                    - std::abs(exact(c, end_time))));
+        std::cout.rdbuf(screen);
+        const double      order_1 = std::log2(errors[0] / errors[1]);
+        const double      order_2 = std::log2(errors[1] / errors[2]);
+        const std::string name    = "damping " + std::to_string(c).substr(0, 3)
+                                 + ", end time "
+                                 + std::to_string(end_time).substr(0, 4);
+        tissuefem_tests::check(std::abs(order_1 - 2.) < 0.2
+                                 && std::abs(order_2 - 2.) < 0.2,
+                               name + ": observed order 2 within 0.2",
+                               "orders " + std::to_string(order_1) + ", "
+                                 + std::to_string(order_2));
+      }
+  return tissuefem_tests::exit_status();
+}
