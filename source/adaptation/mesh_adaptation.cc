@@ -157,20 +157,13 @@ namespace tissuefem::adaptation
 
     // Every process holds the whole mesh, so each interpolates whole
     // (replicated) vectors; then keeps the entries it owns.
-    VectorType everything;
-    everything.reinit(discretization.locally_owned,
-                      complete_index_set(dof_handler.n_dofs()),
-                      comm);
-    std::vector<Vector<double>> old_values(
-      vectors.size(), Vector<double>(dof_handler.n_dofs()));
+    std::vector<Vector<double>> old_values(vectors.size());
     for (unsigned int k = 0; k < vectors.size(); ++k)
       {
         // Hanging values exactly as the constraints compute them, so that
         // the interpolation from either side of a refined edge agrees.
         discretization.hanging_node_constraints.distribute(*vectors[k]);
-        everything = *vectors[k];
-        for (types::global_dof_index i = 0; i < dof_handler.n_dofs(); ++i)
-          old_values[k][i] = everything[i];
+        old_values[k] = *vectors[k];
       }
     SolutionTransfer<dim, Vector<double>> transfer(dof_handler);
     transfer.prepare_for_coarsening_and_refinement(old_values);

@@ -228,18 +228,9 @@ namespace tissuefem::problems
     const double n_cells
       = discretization.dof_handler.get_triangulation().n_active_cells();
     materials::MaterialSet<dim> materials(material_parameters, prm);
-    solid::Solid<dim> solid(discretization, materials, boundary_conditions);
-    FloorKernel<dim>  floor(discretization, materials);
-    Vector<double>    u_all(u.size());
-    {
-      VectorType everything;
-      everything.reinit(discretization.locally_owned,
-                        complete_index_set(u.size()),
-                        parallel_tools::communicator());
-      everything = u;
-      for (unsigned int i = 0; i < u.size(); ++i)
-        u_all[i] = everything[i];
-    }
+    solid::Solid<dim>    solid(discretization, materials, boundary_conditions);
+    FloorKernel<dim>     floor(discretization, materials);
+    const Vector<double> u_all(u);
     // Microseconds per cell of the whole mesh: the slowest process's best
     // wall time over the repetitions, divided by all cells.
     auto time = [&](const auto &work) {

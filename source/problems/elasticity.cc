@@ -79,9 +79,7 @@ namespace tissuefem::problems
                                                     prm);
     linear_solver
       = std::make_unique<solvers::LinearSolver>(linear_solver_parameters);
-    if (linear_solver_parameters.type == "cg amg")
-      linear_solver->set_near_null_space(discretization->rigid_body_modes(),
-                                         dim);
+    give_near_null_space();
     const auto present = triangulation.get_boundary_ids();
     for (const auto id : output_parameters.reaction_boundary_ids)
       require(std::find(present.begin(), present.end(), id) != present.end(),
@@ -94,6 +92,17 @@ namespace tissuefem::problems
       = std::make_unique<adaptation::MeshAdaptation<dim>>(refinement_parameters,
                                                           triangulation,
                                                           *solid);
+  }
+
+
+  template <int dim>
+  void
+  Elasticity<dim>::give_near_null_space()
+  {
+    // Only AMG uses them; they belong to the current mesh.
+    if (linear_solver_parameters.type == "cg amg")
+      linear_solver->set_near_null_space(discretization->rigid_body_modes(),
+                                         dim);
   }
 
 
@@ -113,9 +122,7 @@ namespace tissuefem::problems
       return false;
     // Nodes new on the Dirichlet boundary get the prescribed values.
     solid->apply_dirichlet_values(state.time, state.u);
-    if (linear_solver_parameters.type == "cg amg")
-      linear_solver->set_near_null_space(discretization->rigid_body_modes(),
-                                         dim);
+    give_near_null_space();
     integrator->mesh_changed();
     parallel_tools::screen()
       << "  mesh adapted: " << triangulation.n_active_cells() << " cells, "
@@ -154,7 +161,7 @@ namespace tissuefem::problems
            << solid->n_dofs();
     writer->summary_line(header.str());
 
-    TimerOutput   timer(screen, TimerOutput::summary, TimerOutput::wall_times);
+    TimerOutput timer(screen, TimerOutput::summary, TimerOutput::wall_times);
     const auto &reaction_ids = output_parameters.reaction_boundary_ids;
     writer->write_step(
       0,

@@ -66,18 +66,6 @@ namespace tissuefem::solid
   }
 
 
-  template <int dim>
-  std::size_t
-  CellCache<dim>::memory() const
-  {
-    return owned_cells.size() * sizeof(CellIterator)
-           + dof_indices.size() * sizeof(types::global_dof_index)
-           + jxw.size() * sizeof(double)
-           + gradients.size() * sizeof(Tensor<1, dim>)
-           + points.size() * sizeof(Point<dim>)
-           + values.size() * sizeof(double);
-  }
-
   template class CellCache<1>;
   template class CellCache<2>;
   template class CellCache<3>;

@@ -26,10 +26,7 @@ namespace tissuefem::solid
     struct Scratch
     {
       Scratch(const Discretization<dim> &discretization, const bool faces)
-          : n(discretization.fe->n_dofs_per_cell())
-          , u_cell(n)
-          , w_cell(n)
-          , U(discretization.fe->base_element(0).n_dofs_per_cell())
+          : U(discretization.fe->base_element(0).n_dofs_per_cell())
           , W(U.size())
           , vertices(U.size())
           , gradients(U.size())
@@ -45,10 +42,7 @@ namespace tissuefem::solid
       }
 
       Scratch(const Scratch &other)
-          : n(other.n)
-          , u_cell(other.u_cell)
-          , w_cell(other.w_cell)
-          , U(other.U)
+          : U(other.U)
           , W(other.W)
           , vertices(other.vertices)
           , gradients(other.gradients)
@@ -63,8 +57,6 @@ namespace tissuefem::solid
             other.face_values->get_update_flags());
       }
 
-      const unsigned int                 n;
-      std::vector<double>                u_cell, w_cell;
       std::vector<Tensor<1, dim>>        U, W;
       std::vector<Point<dim>>            vertices;
       std::vector<Tensor<1, dim>>        gradients;
@@ -476,11 +468,11 @@ namespace tissuefem::solid
           return;
         }
       const unsigned int c = copy.cache_index;
-      if (access.direct[c]
-          && (!request.jacobian || request.rows == &discretization.constraints
-              || request.rows == &lifting_constraints))
+      if (access.direct[c])
         {
-          // Owned, unconstrained dofs only: add in place.
+          // Owned dofs under no constraint: every row set used here (the
+          // constraints, their lifted variant, none) treats them alike, so
+          // add in place.
           const int *row = &access.row[c * n];
           for (unsigned int i = 0; i < n; ++i)
             residual_values[row[i]] += copy.rhs[i];
@@ -712,15 +704,6 @@ namespace tissuefem::solid
     return forces;
   }
 
-
-  template <int dim>
-  std::size_t
-  Solid<dim>::memory() const
-  {
-    return jacobian_matrix.memory_consumption() + cache.memory()
-           + discretization.dof_handler.memory_consumption()
-           + (mass ? mass->memory_consumption() : 0);
-  }
 
   template class Solid<1>;
   template class Solid<2>;

@@ -118,32 +118,51 @@ namespace tissuefem::solvers
       numeric = symbolic = nullptr;
     }
 
+    /// Within-row positions, in column order, of the matrix entries:
+    /// Ax[p] is the entry at position order[p] of its row.
+    std::vector<int> order;
+
     /// The serial matrix in compressed rows, which UMFPACK reads as
-    /// compressed columns of the transpose.
+    /// compressed columns of the transpose. The pattern (sorted column
+    /// indices) is built with the symbolic analysis; later calls only copy
+    /// the values.
     void
     copy_rows(const Epetra_CrsMatrix &A)
     {
       const int n = A.NumMyRows();
-      Ap.assign(n + 1, 0);
-      Ai.clear();
-      Ax.clear();
-      std::vector<std::pair<SuiteSparse_long, double>> row;
+      if (!symbolic)
+        {
+          Ap.assign(n + 1, 0);
+          Ai.clear();
+          order.clear();
+          std::vector<std::pair<SuiteSparse_long, int>> row;
+          for (int r = 0; r < n; ++r)
+            {
+              int     length;
+              double *values;
+              int    *columns;
+              A.ExtractMyRowView(r, length, values, columns);
+              row.resize(length);
+              for (int k = 0; k < length; ++k)
+                row[k] = {A.ColMap().GID(columns[k]), k};
+              std::sort(row.begin(), row.end());
+              for (const auto &[column, position] : row)
+                {
+                  Ai.push_back(column);
+                  order.push_back(position);
+                }
+              Ap[r + 1] = Ai.size();
+            }
+        }
+      Ax.resize(Ai.size());
       for (int r = 0; r < n; ++r)
         {
           int     length;
           double *values;
           int    *columns;
           A.ExtractMyRowView(r, length, values, columns);
-          row.resize(length);
-          for (int k = 0; k < length; ++k)
-            row[k] = {A.ColMap().GID(columns[k]), values[k]};
-          std::sort(row.begin(), row.end());
-          for (const auto &[column, value] : row)
-            {
-              Ai.push_back(column);
-              Ax.push_back(value);
-            }
-          Ap[r + 1] = Ai.size();
+          for (SuiteSparse_long p = Ap[r]; p < Ap[r + 1]; ++p)
+            Ax[p] = values[order[p]];
         }
     }
   };

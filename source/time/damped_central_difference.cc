@@ -113,12 +113,9 @@ namespace tissuefem::time
       const double eta = h / dt;
       const double c   = damping;
 
-      // F = f_ext(t) - f_int(u), the force at the current time.
       const auto start = std::chrono::steady_clock::now();
-      VectorType force, external;
-      solid.internal_force(state.u, force);
-      solid.external_force(state.time, external);
-      force.sadd(-1., 1., external);
+      VectorType force;
+      net_force(state.u, state.time, force);
       report.assembly_seconds = seconds_since(start);
 
       VectorType    next(state.u);
@@ -221,6 +218,16 @@ namespace tissuefem::time
       return v.locally_owned_size();
     }
 
+    /// F = f_ext(t) - f_int(u), the force driving the nodes.
+    void
+    net_force(const VectorType &u, const double time, VectorType &force) const
+    {
+      VectorType external;
+      context->solid.internal_force(u, force);
+      context->solid.external_force(time, external);
+      force.sadd(-1., 1., external);
+    }
+
     /// a = (f_ext(t) - f_int(u) - c m v) / m.
     void
     acceleration(const VectorType &u,
@@ -228,10 +235,7 @@ namespace tissuefem::time
                  const double      time,
                  VectorType       &a) const
     {
-      VectorType external;
-      context->solid.internal_force(u, a);
-      context->solid.external_force(time, external);
-      a.sadd(-1., 1., external);
+      net_force(u, time, a);
       double       *ap = local(a);
       const double *vp = local(v);
       const double *m  = local(*mass);

@@ -12,16 +12,9 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <tissuefem/base/application.h>
-#include <tissuefem/boundary/boundary_conditions.h>
-#include <tissuefem/geometry/geometry.h>
-#include <tissuefem/materials/material_set.h>
-#include <tissuefem/solid/discretization.h>
-#include <tissuefem/solid/solid.h>
-#include <tissuefem/solvers/linear_solver.h>
-#include <tissuefem/solvers/newton.h>
-#include <tissuefem/time/interface.h>
 
 #include "../tests.h"
+#include "solid_scene.h"
 
 #include <cmath>
 #include <iostream>
@@ -62,34 +55,14 @@ namespace
     prm.set("Time step", step);
     prm.set("End time", end_time);
     prm.leave_subsection();
-    geometry::GeometryParameters geometry_parameters;
-    geometry_parameters.parse_parameters(prm);
-    Triangulation<1> triangulation;
-    geometry::build_triangulation(geometry_parameters, triangulation);
-    materials::MaterialParameters material_parameters;
-    material_parameters.parse_parameters(prm);
-    materials::MaterialSet<1>    materials(material_parameters, prm);
-    boundary::BoundaryParameters boundary_parameters;
-    boundary_parameters.parse_parameters(prm);
-    boundary::BoundaryConditions<1> boundary_conditions(boundary_parameters);
-    solid::FiniteElementParameters  fe_parameters;
-    fe_parameters.parse_parameters(prm);
-    solid::Discretization<1> discretization(triangulation, fe_parameters, 1);
-    solid::Solid<1>      solid(discretization, materials, boundary_conditions);
-    time::TimeParameters time_parameters;
-    time_parameters.parse_parameters(prm);
-    solvers::NewtonParameters newton_parameters;
-    newton_parameters.parse_parameters(prm);
-    solvers::LinearSolverParameters linear_parameters;
-    linear_parameters.parse_parameters(prm);
-    solvers::LinearSolver linear_solver(linear_parameters);
-    time::Context         context{solid,
-                          time_parameters,
-                          newton_parameters,
-                          linear_solver};
-    auto                  integrator
-      = time::IntegratorRegistry::instance().create(time_parameters.integrator,
-                                                    prm);
+    tissuefem_tests::SolidScene<1> scene(prm);
+    auto                          &solid = *scene.solid;
+    time::Context                  context{solid,
+                          scene.time_parameters,
+                          scene.newton_parameters,
+                          *scene.linear_solver};
+    auto integrator = time::IntegratorRegistry::instance().create(
+      scene.time_parameters.integrator, prm);
     time::State state;
     solid.initial_state(state.u, state.v);
     solid.apply_dirichlet_values(0., state.u);

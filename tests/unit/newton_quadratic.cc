@@ -11,15 +11,10 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <tissuefem/base/application.h>
-#include <tissuefem/boundary/boundary_conditions.h>
-#include <tissuefem/geometry/geometry.h>
-#include <tissuefem/materials/material_set.h>
-#include <tissuefem/solid/discretization.h>
-#include <tissuefem/solid/solid.h>
-#include <tissuefem/solvers/linear_solver.h>
 #include <tissuefem/solvers/newton.h>
 
 #include "../tests.h"
+#include "solid_scene.h"
 
 using namespace dealii;
 using namespace tissuefem;
@@ -47,25 +42,9 @@ namespace
   solvers::NewtonResult
   one_step(ParameterHandler &prm, Vector<double> &u_result)
   {
-    geometry::GeometryParameters geometry_parameters;
-    geometry_parameters.parse_parameters(prm);
-    Triangulation<2> triangulation;
-    geometry::build_triangulation(geometry_parameters, triangulation);
-    materials::MaterialParameters material_parameters;
-    material_parameters.parse_parameters(prm);
-    materials::MaterialSet<2>    materials(material_parameters, prm);
-    boundary::BoundaryParameters boundary_parameters;
-    boundary_parameters.parse_parameters(prm);
-    boundary::BoundaryConditions<2> boundary_conditions(boundary_parameters);
-    solid::FiniteElementParameters  fe_parameters;
-    fe_parameters.parse_parameters(prm);
-    solid::Discretization<2> discretization(triangulation, fe_parameters, 2);
-    solid::Solid<2> solid(discretization, materials, boundary_conditions);
-    solvers::NewtonParameters newton_parameters;
-    newton_parameters.parse_parameters(prm);
-    solvers::LinearSolverParameters linear_parameters;
-    linear_parameters.parse_parameters(prm);
-    solvers::LinearSolver linear_solver(linear_parameters);
+    tissuefem_tests::SolidScene<2> scene(prm);
+    auto                          &solid         = *scene.solid;
+    auto                          &linear_solver = *scene.linear_solver;
 
     const double dt = 0.1;
     VectorType   u, u_tilde;
@@ -76,7 +55,7 @@ namespace
     u = std::sin(dt);
     solid.apply_dirichlet_values(dt, u);
     const auto result = solvers::solve_newton(
-      newton_parameters,
+      scene.newton_parameters,
       u,
       [&](const VectorType &x, VectorType &r, bool jacobian) {
         solid.implicit_residual(x, u_tilde, 1. / (dt * dt), dt, r, jacobian);

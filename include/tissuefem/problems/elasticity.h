@@ -62,6 +62,11 @@ namespace tissuefem::problems
     std::unique_ptr<output::OutputWriter<dim>>         writer;
     std::unique_ptr<adaptation::MeshAdaptation<dim>>   adaptation;
 
+    /// Hands the rigid-body modes of the current mesh to the linear
+    /// solver, if it uses them.
+    void
+    give_near_null_space();
+
     /// Adapts the mesh after step @p step if due; returns whether it
     /// changed.
     bool

@@ -73,10 +73,6 @@ namespace tissuefem::solid
       return points[c * n_q + q];
     }
 
-    /// Bytes held.
-    std::size_t
-    memory() const;
-
   private:
     std::vector<CellIterator>            owned_cells;
     std::vector<types::global_dof_index> dof_indices;

@@ -133,11 +133,6 @@ namespace tissuefem::solid
       return fibre_field;
     }
 
-    /// Bytes held by the matrix, the cell cache and the dof handler on
-    /// this process.
-    std::size_t
-    memory() const;
-
   private:
     /// What one assembly pass computes.
     struct Request
