@@ -165,7 +165,8 @@ namespace tissuefem::output
           statistics_file
             << "step,time,dt,newton_iterations,linear_iterations,"
                "rejected_attempts,final_residual_norm,assembly_seconds,"
-               "solve_seconds,step_seconds\n";
+               "solve_seconds,step_seconds,substeps,jacobian_evaluations,"
+               "stored_energy,kinetic_energy,damping_work\n";
           open_or_fail(probes_file, parameters.directory + "/probes.csv");
           probes_file << "time,probe";
           for (unsigned int d = 0; d < dim; ++d)
@@ -229,13 +230,16 @@ namespace tissuefem::output
 
     if (parallel_tools::is_root())
       {
+        damping_work_sum += s.damping_work;
         if (step > 0)
           statistics_file << step << ',' << state.time << ',' << s.dt << ','
                           << s.newton_iterations << ',' << s.linear_iterations
                           << ',' << s.rejected_attempts << ','
                           << s.residual_norm << ',' << s.assembly_seconds << ','
-                          << s.solve_seconds << ',' << s.step_seconds
-                          << std::endl;
+                          << s.solve_seconds << ',' << s.step_seconds << ','
+                          << s.substeps << ',' << s.jacobian_evaluations << ','
+                          << s.stored_energy << ',' << s.kinetic_energy << ','
+                          << damping_work_sum << std::endl;
         const bool summarize
           = summary.is_open() && step % parameters.summary_interval == 0;
         for (unsigned int p = 0; p < values.size(); ++p)

@@ -30,15 +30,17 @@ namespace tissuefem::problems
     linear_solver_parameters.parse_parameters(prm);
     output_parameters.parse_parameters(prm);
     refinement_parameters.parse_parameters(prm);
+    tool_parameters.parse_parameters(prm);
   }
 
 
   template <int dim>
   void
-  Elasticity<dim>::declare_parameters(ParameterHandler &)
+  Elasticity<dim>::declare_parameters(ParameterHandler &prm)
   {
-    // Every subsection this problem reads is shared with other problems and
-    // declared by the application.
+    // The other subsections this problem reads are shared with other
+    // problems and declared by the application.
+    tool::ToolParameters::declare_parameters(prm);
   }
 
 
@@ -92,6 +94,42 @@ namespace tissuefem::problems
       = std::make_unique<adaptation::MeshAdaptation<dim>>(refinement_parameters,
                                                           triangulation,
                                                           *solid);
+    if (tool_parameters.enabled)
+      {
+        require(refinement_parameters.indicator == "none",
+                "Mesh refinement/Indicator",
+                "must be 'none' with a tool (held vertices are those of the "
+                "initial mesh)");
+        tool = std::make_unique<tool::GraspTool<dim>>(tool_parameters,
+                                                      triangulation);
+      }
+  }
+
+
+  template <int dim>
+  void
+  Elasticity<dim>::summarize_tool(const double time, const Tensor<1, dim> &f)
+  {
+    std::ostringstream line;
+    line << std::setprecision(8) << "t = " << time << " tool force =";
+    for (unsigned int d = 0; d < dim; ++d)
+      line << ' ' << f[d];
+    writer->summary_line(line.str());
+  }
+
+
+  template <int dim>
+  void
+  Elasticity<dim>::move_tool(time::State &state, const bool started)
+  {
+    if (!tool || !tool->due(state.time))
+      return;
+    // The constraints change: factorizations refer to the old matrix.
+    linear_solver->reset();
+    tool->act(state, *solid);
+    solid->apply_dirichlet_values(state.time, state.u);
+    if (started)
+      integrator->mesh_changed();
   }
 
 
@@ -131,6 +169,29 @@ namespace tissuefem::problems
   }
 
 
+  namespace
+  {
+    /// The share of steps within the budget, median and worst step time.
+    std::string
+    real_time_report(std::vector<double> seconds, const double budget)
+    {
+      if (seconds.empty())
+        return "real time: no steps";
+      std::sort(seconds.begin(), seconds.end());
+      const auto within
+        = std::upper_bound(seconds.begin(), seconds.end(), budget)
+          - seconds.begin();
+      std::ostringstream s;
+      s << "real time: " << std::setprecision(3)
+        << 100. * within / seconds.size() << " % of " << seconds.size()
+        << " steps within the budget of " << budget
+        << " s (wall clock); median step " << seconds[seconds.size() / 2]
+        << " s, worst " << seconds.back() << " s";
+      return s.str();
+    }
+  } // namespace
+
+
   template <int dim>
   void
   Elasticity<dim>::run()
@@ -146,8 +207,11 @@ namespace tissuefem::problems
     time::State   state;
     solid->initial_state(state.u, state.v);
     solid->apply_dirichlet_values(0., state.u);
+    move_tool(state, false);
     integrator->initialize(context, state);
     writer->open();
+    if (tool)
+      tool->open(output_parameters.directory);
 
     screen << "tissuefem: " << dim << "D elasticity, "
            << triangulation.n_active_cells() << " cells, " << solid->n_dofs()
@@ -168,21 +232,28 @@ namespace tissuefem::problems
       time::StepReport(),
       state,
       solid->reaction_forces(state.u, state.a, state.time, reaction_ids));
+    if (tool)
+      summarize_tool(state.time, tool->record(state, *solid));
 
-    const double end_time     = time_parameters.end_time;
-    unsigned int step         = 0;
-    bool         mesh_changed = false;
+    const double        end_time = time_parameters.end_time;
+    std::vector<double> step_seconds;
+    unsigned int        step         = 0;
+    bool                mesh_changed = false;
     while (state.time < end_time * (1 - 1e-12))
       {
         time::StepReport report;
         {
           TimerOutput::Scope scope(timer, "time steps (integrator)");
+          move_tool(state, true);
           const auto         start = std::chrono::steady_clock::now();
           report                   = integrator->advance(state, end_time);
           report.step_seconds      = std::chrono::duration<double>(
                                   std::chrono::steady_clock::now() - start)
                                   .count();
         }
+        step_seconds.push_back(report.step_seconds);
+        report.stored_energy  = solid->stored_energy(state.u);
+        report.kinetic_energy = solid->kinetic_energy(state.v);
         ++step;
         TimerOutput::Scope scope(timer, "output");
         const auto         reactions
@@ -194,6 +265,8 @@ namespace tissuefem::problems
                << report.residual_norm << std::defaultfloat
                << std::setprecision(6) << std::endl;
         writer->write_step(step, report, state, reactions, mesh_changed);
+        if (tool)
+          summarize_tool(state.time, tool->record(state, *solid));
         // The state just written is an equilibrium (or solution) on its
         // mesh; the next step starts on the adapted one.
         if (state.time < end_time * (1 - 1e-12))
@@ -228,6 +301,12 @@ namespace tissuefem::problems
     screen << "peak memory (resident, all processes): " << peak_bytes / 1e6
            << " MB, " << peak_bytes / solid->n_dofs() << " bytes per unknown"
            << std::endl;
+    if (const std::string s = integrator->summary(); !s.empty())
+      screen << s << std::endl;
+    screen << real_time_report(step_seconds, time_parameters.real_time_budget)
+           << std::endl;
+    if (tool)
+      screen << tool->summary() << std::endl;
     const auto &linear = linear_solver->statistics();
     screen << "linear solver: " << linear.solves << " solves, "
            << linear.iterations << " Krylov iterations, " << linear.setups

@@ -117,7 +117,41 @@ namespace tissuefem::solid
                                                    fe->n_components()),
                                                  constraints,
                                                  d.mask);
+    if (boundary_conditions && boundary_conditions->held)
+      for (const auto &[dof, vertex, component] : held_vertex_dofs(
+             dof_handler, boundary_conditions->held->vertices, locally_relevant))
+        if (!constraints.is_constrained(dof))
+          constraints.add_line(dof);
     constraints.close();
+  }
+
+
+  template <int dim>
+  std::vector<std::tuple<types::global_dof_index, unsigned int, unsigned int>>
+  held_vertex_dofs(const DoFHandler<dim>           &dof_handler,
+                   const std::vector<unsigned int> &vertices,
+                   const IndexSet                  &relevant)
+  {
+    std::vector<bool> wanted(dof_handler.get_triangulation().n_vertices(),
+                             false);
+    for (const auto v : vertices)
+      wanted[v] = true;
+    std::vector<
+      std::tuple<types::global_dof_index, unsigned int, unsigned int>>
+      result;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (!cell->is_artificial())
+        for (const auto v : cell->vertex_indices())
+          if (wanted[cell->vertex_index(v)])
+            for (unsigned int c = 0; c < dim; ++c)
+              {
+                const auto dof = cell->vertex_dof_index(v, c);
+                if (relevant.is_element(dof))
+                  result.emplace_back(dof, cell->vertex_index(v), c);
+              }
+    std::sort(result.begin(), result.end());
+    result.erase(std::unique(result.begin(), result.end()), result.end());
+    return result;
   }
 
 
@@ -183,6 +217,21 @@ namespace tissuefem::solid
     return modes;
   }
 
+  template std::vector<
+    std::tuple<types::global_dof_index, unsigned int, unsigned int>>
+  held_vertex_dofs(const DoFHandler<1> &,
+                   const std::vector<unsigned int> &,
+                   const IndexSet &);
+  template std::vector<
+    std::tuple<types::global_dof_index, unsigned int, unsigned int>>
+  held_vertex_dofs(const DoFHandler<2> &,
+                   const std::vector<unsigned int> &,
+                   const IndexSet &);
+  template std::vector<
+    std::tuple<types::global_dof_index, unsigned int, unsigned int>>
+  held_vertex_dofs(const DoFHandler<3> &,
+                   const std::vector<unsigned int> &,
+                   const IndexSet &);
   template class Discretization<1>;
   template class Discretization<2>;
   template class Discretization<3>;

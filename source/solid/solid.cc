@@ -124,6 +124,12 @@ namespace tissuefem::solid
     jacobian_matrix.reinit(sparsity);
     mass.reset();
     lumped.reset();
+    groups.clear();
+    held_dofs.clear();
+    if (boundary_conditions.held)
+      held_dofs = held_vertex_dofs(dof_handler,
+                                   boundary_conditions.held->vertices,
+                                   discretization.locally_relevant);
     cache.build(discretization, body_force_present);
     fibre_field.build(discretization, materials);
     discretization.initialize_vector(ghosted_u, true);
@@ -219,6 +225,12 @@ namespace tissuefem::solid
                                                  *d.displacement,
                                                  values,
                                                  d.mask);
+      }
+    if (boundary_conditions.held)
+      {
+        const auto motion = boundary_conditions.held->motion(time);
+        for (const auto &[dof, vertex, component] : held_dofs)
+          values[dof] = held_start.at(dof) + motion[component];
       }
     return values;
   }
@@ -678,15 +690,8 @@ namespace tissuefem::solid
     std::vector<double> forces(boundary_ids.size() * dim, 0.);
     if (boundary_ids.empty())
       return forces;
-    make_ghosted(u, ghosted_u);
-    make_ghosted(acceleration, ghosted_w);
-    Request request;
-    request.u       = &ghosted_u;
-    request.inertia = &ghosted_w;
-    request.time    = time;
-    request.rows    = &no_constraints;
     VectorType residual;
-    assemble(request, residual);
+    unconstrained_residual(u, acceleration, time, residual);
     for (unsigned int b = 0; b < boundary_ids.size(); ++b)
       for (unsigned int c = 0; c < dim; ++c)
         {
@@ -702,6 +707,69 @@ namespace tissuefem::solid
         }
     Utilities::MPI::sum(forces, parallel_tools::communicator(), forces);
     return forces;
+  }
+
+
+  template <int dim>
+  void
+  Solid<dim>::unconstrained_residual(const VectorType &u,
+                                     const VectorType &acceleration,
+                                     const double      time,
+                                     VectorType       &residual)
+  {
+    make_ghosted(u, ghosted_u);
+    make_ghosted(acceleration, ghosted_w);
+    Request request;
+    request.u       = &ghosted_u;
+    request.inertia = &ghosted_w;
+    request.time    = time;
+    request.rows    = &no_constraints;
+    assemble(request, residual);
+  }
+
+
+  template <int dim>
+  std::vector<double>
+  Solid<dim>::held_force(const VectorType &u,
+                         const VectorType &acceleration,
+                         const double      time)
+  {
+    std::vector<double> force(dim, 0.);
+    if (!boundary_conditions.held)
+      return force;
+    VectorType residual;
+    unconstrained_residual(u, acceleration, time, residual);
+    for (const auto &[dof, vertex, component] : held_dofs)
+      if (discretization.locally_owned.is_element(dof))
+        force[component] -= residual[dof];
+    Utilities::MPI::sum(force, parallel_tools::communicator(), force);
+    return force;
+  }
+
+
+  template <int dim>
+  void
+  Solid<dim>::hold(const std::vector<unsigned int>                   &vertices,
+                   const std::function<Tensor<1, dim>(const double)> &motion,
+                   const VectorType                                  &u)
+  {
+    VectorType ghosted;
+    discretization.initialize_vector(ghosted, true);
+    make_ghosted(u, ghosted);
+    boundary_conditions.held = {vertices, motion};
+    setup();
+    held_start.clear();
+    for (const auto &[dof, vertex, component] : held_dofs)
+      held_start[dof] = ghosted[dof];
+  }
+
+
+  template <int dim>
+  void
+  Solid<dim>::release()
+  {
+    boundary_conditions.held.reset();
+    setup();
   }
 
 

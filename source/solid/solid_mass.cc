@@ -127,12 +127,72 @@ namespace tissuefem::solid
   }
 
 
+  template <int dim>
+  const std::vector<std::vector<types::global_dof_index>> &
+  Solid<dim>::column_groups()
+  {
+    if (!groups.empty())
+      return groups;
+    // Every process holds every cell (shared triangulation), so every
+    // process colours the whole graph alike. Dofs j and k conflict when a
+    // row couples to both, i.e. when they lie in cells that share a dof:
+    // greedy colouring over neighbours of neighbours, in index order.
+    const auto                   &dh = discretization.dof_handler;
+    const types::global_dof_index n  = dh.n_dofs();
+    std::vector<std::vector<types::global_dof_index>> neighbours(n);
+    std::vector<types::global_dof_index> dofs(dh.get_fe().n_dofs_per_cell());
+    for (const auto &cell : dh.active_cell_iterators())
+      {
+        cell->get_dof_indices(dofs);
+        for (const auto i : dofs)
+          neighbours[i].insert(neighbours[i].end(), dofs.begin(), dofs.end());
+      }
+    for (auto &list : neighbours)
+      {
+        std::sort(list.begin(), list.end());
+        list.erase(std::unique(list.begin(), list.end()), list.end());
+      }
+    std::vector<int>          colour(n, -1);
+    std::vector<unsigned int> seen_by;
+    for (types::global_dof_index j = 0; j < n; ++j)
+      {
+        for (const auto i : neighbours[j])
+          for (const auto k : neighbours[i])
+            if (colour[k] >= 0)
+              {
+                if (seen_by.size() <= static_cast<unsigned int>(colour[k]))
+                  seen_by.resize(colour[k] + 1, n);
+                seen_by[colour[k]] = j;
+              }
+        unsigned int c = 0;
+        while (c < seen_by.size() && seen_by[c] == j)
+          ++c;
+        colour[j] = c;
+        if (groups.size() <= c)
+          groups.resize(c + 1);
+        groups[c].push_back(j);
+      }
+    return groups;
+  }
+
+
+  template <int dim>
+  bool
+  Solid<dim>::has_hanging_nodes() const
+  {
+    return discretization.has_hanging_nodes;
+  }
+
+
   // The class is instantiated in solid.cc; these members here.
 #define TISSUEFEM_INSTANTIATE(dim)                                     \
   template const MatrixType &Solid<dim>::mass_matrix();                \
   template const VectorType &Solid<dim>::lumped_mass();                \
   template double Solid<dim>::stored_energy(const VectorType &) const; \
-  template double Solid<dim>::kinetic_energy(const VectorType &);
+  template double Solid<dim>::kinetic_energy(const VectorType &);      \
+  template const std::vector<std::vector<types::global_dof_index>>     \
+               &Solid<dim>::column_groups();                           \
+  template bool Solid<dim>::has_hanging_nodes() const;
   TISSUEFEM_INSTANTIATE(1)
   TISSUEFEM_INSTANTIATE(2)
   TISSUEFEM_INSTANTIATE(3)

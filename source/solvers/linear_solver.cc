@@ -89,6 +89,7 @@ namespace tissuefem::solvers
     // Amesos (MUMPS, KLU).
     Epetra_LinearProblem               problem;
     std::unique_ptr<Amesos_BaseSolver> amesos;
+    bool                               factorized = false;
 
     // UMFPACK.
     void                         *symbolic = nullptr;
@@ -193,6 +194,7 @@ namespace tissuefem::solvers
   {
     implementation->matrix = nullptr;
     implementation->amesos.reset();
+    implementation->factorized = false;
     implementation->free_umfpack();
     implementation->amg.reset();
     implementation->modes.reset();
@@ -200,7 +202,10 @@ namespace tissuefem::solvers
 
 
   void
-  LinearSolver::solve(const MatrixType &A, VectorType &x, const VectorType &b)
+  LinearSolver::solve(const MatrixType &A,
+                      VectorType       &x,
+                      const VectorType &b,
+                      const bool        refactorize)
   {
     auto &impl = *implementation;
     auto &M    = const_cast<Epetra_CrsMatrix &>(A.trilinos_matrix());
@@ -234,16 +239,23 @@ namespace tissuefem::solvers
             impl.problem.SetLHS(&x.trilinos_vector());
             impl.problem.SetRHS(const_cast<Epetra_MultiVector *>(
               static_cast<const Epetra_MultiVector *>(&b.trilinos_vector())));
-            if (impl.amesos->NumericFactorization() != 0)
-              throw SolverError("numeric factorization failed (singular "
-                                "Jacobian?)");
-            ++stats.factorizations;
+            if (refactorize || !impl.factorized)
+              {
+                impl.factorized = false;
+                if (impl.amesos->NumericFactorization() != 0)
+                  throw SolverError("numeric factorization failed (singular "
+                                    "Jacobian?)");
+                impl.factorized = true;
+                ++stats.factorizations;
+              }
             if (impl.amesos->Solve() != 0)
               throw SolverError("triangular solves failed");
           }
         else if (parameters.type == "UMFPACK")
           {
-            impl.copy_rows(M);
+            const bool numeric = refactorize || !impl.numeric;
+            if (numeric)
+              impl.copy_rows(M);
             const SuiteSparse_long n = impl.Ap.size() - 1;
             double                 control[UMFPACK_CONTROL];
             umfpack_dl_defaults(control);
@@ -262,20 +274,23 @@ namespace tissuefem::solvers
                 ++stats.setups;
                 stats.setup_seconds += seconds_since(start);
               }
-            if (impl.numeric)
-              umfpack_dl_free_numeric(&impl.numeric);
-            const auto status = umfpack_dl_numeric(impl.Ap.data(),
-                                                   impl.Ai.data(),
-                                                   impl.Ax.data(),
-                                                   impl.symbolic,
-                                                   &impl.numeric,
-                                                   control,
-                                                   nullptr);
-            if (status != UMFPACK_OK)
-              throw SolverError("UMFPACK numeric factorization failed "
-                                "(status "
-                                + std::to_string(status) + ")");
-            ++stats.factorizations;
+            if (numeric)
+              {
+                if (impl.numeric)
+                  umfpack_dl_free_numeric(&impl.numeric);
+                const auto status = umfpack_dl_numeric(impl.Ap.data(),
+                                                       impl.Ai.data(),
+                                                       impl.Ax.data(),
+                                                       impl.symbolic,
+                                                       &impl.numeric,
+                                                       control,
+                                                       nullptr);
+                if (status != UMFPACK_OK)
+                  throw SolverError("UMFPACK numeric factorization failed "
+                                    "(status "
+                                    + std::to_string(status) + ")");
+                ++stats.factorizations;
+              }
             // The rows of A read as columns are A^T: solve its transpose.
             if (umfpack_dl_solve(UMFPACK_At,
                                  impl.Ap.data(),

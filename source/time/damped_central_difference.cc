@@ -2,6 +2,7 @@
 #include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/base/timing.h>
 #include <tissuefem/time/interface.h>
+#include <tissuefem/time/nodal.h>
 
 #include <cmath>
 #include <iomanip>
@@ -74,7 +75,7 @@ namespace tissuefem::time
       auto &solid = c.solid;
       mass        = &solid.lumped_mass();
       for (unsigned int i = 0; i < local_size(state.u); ++i)
-        if (!(local(*mass)[i] > 0))
+        if (!(local_entries(*mass)[i] > 0))
           throw InputError("Parameter 'Time integration/Integrator': the "
                            "row-sum lumped mass is not positive at some "
                            "node (P2 simplices); use linear elements or an "
@@ -119,11 +120,11 @@ namespace tissuefem::time
       report.assembly_seconds = seconds_since(start);
 
       VectorType    next(state.u);
-      double       *x           = local(next);
-      const double *u           = local(state.u);
-      const double *um          = local(previous);
-      const double *f           = local(force);
-      const double *m           = local(*mass);
+      double       *x           = local_entries(next);
+      const double *u           = local_entries(state.u);
+      const double *um          = local_entries(previous);
+      const double *f           = local_entries(force);
+      const double *m           = local_entries(*mass);
       const double  denominator = 2. + c * dt;
       for (unsigned int i = 0; i < local_size(next); ++i)
         x[i] = (eta * (eta + 1) * dt * dt * f[i] / m[i]
@@ -134,7 +135,7 @@ namespace tissuefem::time
 
       // The acceleration at t (F/m - c v), v at t from appendix A.
       VectorType a(force);
-      double    *ap = local(a);
+      double    *ap = local_entries(a);
       for (unsigned int i = 0; i < local_size(a); ++i)
         ap[i] = f[i] / m[i]
                 - c * (x[i] + (eta * eta - 1) * u[i] - eta * eta * um[i])
@@ -143,6 +144,17 @@ namespace tissuefem::time
       VectorType v(next);
       v -= state.u;
       v /= h;
+      // Energy taken out by the damping force over the step, c m v^2 h
+      // with the step's mean velocity.
+      if (c > 0)
+        {
+          const double *vp   = local_entries(v);
+          double        work = 0;
+          for (unsigned int i = 0; i < local_size(v); ++i)
+            work += m[i] * vp[i] * vp[i];
+          report.damping_work
+            = c * h * Utilities::MPI::sum(work, parallel_tools::communicator());
+        }
       previous      = state.u;
       previous_step = h;
       state.u.swap(next);
@@ -202,22 +214,6 @@ namespace tissuefem::time
     double            omega_max     = 0;
     double            energy        = 0;
 
-    static double *
-    local(VectorType &v)
-    {
-      return v.trilinos_vector()[0];
-    }
-    static const double *
-    local(const VectorType &v)
-    {
-      return v.trilinos_vector()[0];
-    }
-    static unsigned int
-    local_size(const VectorType &v)
-    {
-      return v.locally_owned_size();
-    }
-
     /// F = f_ext(t) - f_int(u), the force driving the nodes.
     void
     net_force(const VectorType &u, const double time, VectorType &force) const
@@ -236,9 +232,9 @@ namespace tissuefem::time
                  VectorType       &a) const
     {
       net_force(u, time, a);
-      double       *ap = local(a);
-      const double *vp = local(v);
-      const double *m  = local(*mass);
+      double       *ap = local_entries(a);
+      const double *vp = local_entries(v);
+      const double *m  = local_entries(*mass);
       for (unsigned int i = 0; i < local_size(a); ++i)
         ap[i] = ap[i] / m[i] - damping * vp[i];
     }
@@ -261,7 +257,7 @@ namespace tissuefem::time
       VectorType w(u), base, shifted, trial;
       solid.internal_force(u, base);
       // A deterministic start with every mode in it.
-      double *wp = local(w);
+      double *wp = local_entries(w);
       for (unsigned int i = 0; i < local_size(w); ++i)
         wp[i] = 1. + 0.37 * std::sin(1.7 * (i + 1) + w.local_range().first);
       solid.zero_constrained_entries(w);
@@ -278,8 +274,8 @@ namespace tissuefem::time
           solid.internal_force(trial, shifted);
           shifted -= base;
           shifted /= e;
-          double       *sp = local(shifted);
-          const double *m  = local(*mass);
+          double       *sp = local_entries(shifted);
+          const double *m  = local_entries(*mass);
           for (unsigned int i = 0; i < local_size(shifted); ++i)
             sp[i] /= m[i];
           solid.zero_constrained_entries(shifted);

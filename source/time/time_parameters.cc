@@ -31,6 +31,14 @@ namespace tissuefem::time
                       "step size at most this many times before the run stops "
                       "with an error. After a successful reduced step the "
                       "step size doubles back towards 'Time step'.");
+    prm.declare_entry("Real-time budget",
+                      "0.0333333333",
+                      Patterns::Double(),
+                      "Wall-clock seconds one step may take in an interactive "
+                      "loop (1/30 s: a visual frame; Jeffrey's report aims at "
+                      "1/50 s); > 0. The end of a run reports the share of "
+                      "steps within it. With 'Time step' equal to this, the "
+                      "simulation keeps up with real time.");
     IntegratorRegistry::instance().declare_parameters(prm);
     prm.leave_subsection();
   }
@@ -44,7 +52,11 @@ namespace tissuefem::time
     end_time          = prm.get_double("End time");
     time_step         = prm.get_double("Time step");
     max_step_halvings = prm.get_integer("Maximum step halvings");
+    real_time_budget  = prm.get_double("Real-time budget");
     prm.leave_subsection();
+    require(std::isfinite(real_time_budget) && real_time_budget > 0,
+            "Time integration/Real-time budget",
+            "must be > 0 (seconds), got " + std::to_string(real_time_budget));
     require(std::isfinite(time_step) && time_step > 0,
             "Time integration/Time step",
             "must be > 0, got " + std::to_string(time_step));

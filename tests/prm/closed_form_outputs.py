@@ -114,3 +114,20 @@ S_xx = lam * (a + by + bz) + 2 * mu * a
 write("muscle_stretch_across", 1, [stretch * S_xx, 0, 0],
       stvk_energy(lam, mu, diag(a, by, bz), kappa, 1))
 print("stiffness ratio along/across the fibre at 1 % stretch:", along / (stretch * S_xx))
+
+
+def tool_pull_bar_1d():
+    # u(x, t) = 0.1 t x while held (uniform strain 0.1 t, sigma = E eps,
+    # E = 1, L = 1): probe x = 0.5 at 0.05 t, the tissue pulls on the tool
+    # with -0.1 t; released at t = 0.5, the free bar is at rest from then on.
+    lines = ["cells 4 unknowns 5"]
+    for t in (0, 0.25, 0.5, 0.75, 1):
+        held = t <= 0.5
+        lines.append("t = %s probe 0 u = %s" % (fmt(t), fmt(0.05 * t if held else 0)))
+        lines.append("t = %s tool force = %s" % (fmt(t), fmt(-0.1 * t if held and t > 0 else 0)))
+    lines.append("final elastic energy 0")
+    with open("tool_pull_bar_1d.output", "w") as f:
+        f.write("\n".join(lines) + "\n")
+
+
+tool_pull_bar_1d()

@@ -36,7 +36,13 @@ namespace tissuefem::output
    * - solution-NNNNN.pvtu (one solution-NNNNN.P.vtu piece per MPI
    *   process) and solution.pvd: displacement, velocity, J, von Mises
    *   stress, material id and owning process, every 'VTU interval' steps;
-   * - statistics.csv: one row per step;
+   * - statistics.csv: one row per step: time (time units), dt (the
+   *   step, or the interval an adaptive integrator covered with
+   *   'substeps' steps of its own), Newton and Krylov iterations,
+   *   rejected attempts, final residual norm (force units), wall times
+   *   (s) of assembly, solve and the whole step, Jacobian evaluations,
+   *   stored and kinetic energy of the state (energy units) and the energy
+   *   dissipated by the integrator's damping since t = 0;
    * - probes.csv: displacement at the probe points, long form, every step;
    * - reactions.csv: force through each 'Reaction boundary ids' boundary;
    * - the optional summary file: probe values and energy without timings,
@@ -80,6 +86,8 @@ namespace tissuefem::output
     const solid::Solid<dim>     &solid;
     std::unique_ptr<Probes<dim>> probes;
     std::ofstream statistics_file, probes_file, reactions_file, summary;
+    /// Energy dissipated by the integrator's damping since the start.
+    double damping_work_sum = 0;
     std::vector<std::pair<double, std::string>> pvd_records;
 
     void

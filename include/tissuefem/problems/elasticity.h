@@ -13,6 +13,7 @@
 #include <tissuefem/solvers/linear_solver.h>
 #include <tissuefem/solvers/newton.h>
 #include <tissuefem/time/interface.h>
+#include <tissuefem/tool/grasp_tool.h>
 
 namespace tissuefem::problems
 {
@@ -51,6 +52,7 @@ namespace tissuefem::problems
     solvers::LinearSolverParameters      linear_solver_parameters;
     output::OutputParameters             output_parameters;
     adaptation::MeshRefinementParameters refinement_parameters;
+    tool::ToolParameters                 tool_parameters;
 
     parallel::shared::Triangulation<dim>               triangulation;
     std::unique_ptr<materials::MaterialSet<dim>>       materials;
@@ -61,6 +63,15 @@ namespace tissuefem::problems
     std::unique_ptr<solvers::LinearSolver>             linear_solver;
     std::unique_ptr<output::OutputWriter<dim>>         writer;
     std::unique_ptr<adaptation::MeshAdaptation<dim>>   adaptation;
+    std::unique_ptr<tool::GraspTool<dim>>              tool;
+
+    /// Lets the tool grasp or release if due (before a step).
+    void
+    move_tool(time::State &state, const bool started);
+
+    /// The tool force into the summary file (for regression tests).
+    void
+    summarize_tool(const double time, const Tensor<1, dim> &force);
 
     /// Hands the rigid-body modes of the current mesh to the linear
     /// solver, if it uses them.

@@ -4,6 +4,9 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/quadrature.h>
 #include <deal.II/dofs/dof_handler.h>
+
+#include <tuple>
+#include <vector>
 #include <deal.II/fe/fe.h>
 #include <deal.II/fe/mapping.h>
 #include <deal.II/grid/tria.h>
@@ -40,6 +43,14 @@ namespace tissuefem::solid
    * Dirichlet components) that Newton updates obey. distribute() is called
    * again whenever the mesh changes.
    */
+  /// (dof, vertex, component) of every displacement dof at the listed
+  /// triangulation vertices that lies in @p relevant, sorted.
+  template <int dim>
+  std::vector<std::tuple<types::global_dof_index, unsigned int, unsigned int>>
+  held_vertex_dofs(const DoFHandler<dim>           &dof_handler,
+                   const std::vector<unsigned int> &vertices,
+                   const IndexSet                  &relevant);
+
   template <int dim>
   class Discretization
   {

@@ -108,6 +108,29 @@ namespace tissuefem::solid
     external_force(const double time, VectorType &force)
       = 0;
 
+    /**
+     * The force the body exerts on whatever holds its held vertices (a
+     * grasping tool; see Solid::hold()), for a state (u, a) at @p time:
+     * minus the sum over the held degrees of freedom of M a + f_int(u) -
+     * f_ext(t); dim components (force units), zero when nothing is held.
+     */
+    virtual std::vector<double>
+    held_force(const VectorType &u, const VectorType &acceleration, double time)
+      = 0;
+    /**
+     * Groups of degrees of freedom whose Jacobian columns share no row
+     * (a distance-2 colouring of the matrix graph), the same on every
+     * process: perturbing all of one group at once and differencing the
+     * internal force recovers all their columns (Curtis, Powell and Reid's
+     * finite-difference Jacobian). Built on first use.
+     */
+    virtual const std::vector<std::vector<types::global_dof_index>> &
+    column_groups()
+      = 0;
+    /// Whether some degrees of freedom are hanging-node constraints (an
+    /// adapted mesh); methods with lumped masses do not support them.
+    virtual bool
+    has_hanging_nodes() const = 0;
     /// The consistent mass matrix, assembled on first use.
     virtual const MatrixType &
     mass_matrix()

@@ -102,6 +102,32 @@ namespace tissuefem::solid
     const VectorType &
     lumped_mass() override;
 
+    const std::vector<std::vector<types::global_dof_index>> &
+    column_groups() override;
+
+    std::vector<double>
+    held_force(const VectorType &u,
+               const VectorType &acceleration,
+               double            time) override;
+
+    /**
+     * Holds the listed triangulation vertices from now on: all their
+     * displacement components follow u_start + motion(t), u_start their
+     * displacement in @p u. Rebuilds constraints and matrix layout like
+     * setup(): reset linear solvers first, tell integrators after.
+     */
+    void
+    hold(const std::vector<unsigned int>                   &vertices,
+         const std::function<Tensor<1, dim>(const double)> &motion,
+         const VectorType                                  &u);
+
+    /// Lets the held vertices go (they keep their state); as hold().
+    void
+    release();
+
+    bool
+    has_hanging_nodes() const override;
+
     double
     stored_energy(const VectorType &u) const override;
 
@@ -177,11 +203,24 @@ namespace tissuefem::solid
     FibreField<dim>                    fibre_field;
     AffineConstraints<double>          no_constraints;
     /// Constraints with the Dirichlet increment (implicit_residual_lifting).
-    AffineConstraints<double> lifting_constraints;
-    MatrixType                jacobian_matrix;
-    std::optional<MatrixType> mass;
-    std::optional<VectorType> lumped;
-    bool                      body_force_present;
+    AffineConstraints<double>                         lifting_constraints;
+    MatrixType                                        jacobian_matrix;
+    std::optional<MatrixType>                         mass;
+    std::optional<VectorType>                         lumped;
+    std::vector<std::vector<types::global_dof_index>> groups;
+    /// (dof, vertex, component) of the held vertices, locally relevant,
+    /// and their displacement when grasped.
+    std::vector<std::tuple<types::global_dof_index, unsigned int, unsigned int>>
+                                              held_dofs;
+    std::map<types::global_dof_index, double> held_start;
+
+    /// M a + f_int(u) - f_ext(t) on every row, without constraints.
+    void
+    unconstrained_residual(const VectorType &u,
+                           const VectorType &acceleration,
+                           const double      time,
+                           VectorType       &residual);
+    bool                                              body_force_present;
     /// Ghosted copies of the arguments, reused between calls.
     VectorType ghosted_u, ghosted_w;
 

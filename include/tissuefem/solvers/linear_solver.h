@@ -77,11 +77,16 @@ namespace tissuefem::solvers
     /**
      * Solves A x = b for a matrix whose sparsity pattern is that of the
      * previous call unless reset() was called. Throws SolverError if the
-     * solver fails. @p values_changed false reuses the last factorization
-     * or preconditioner as is.
+     * solver fails. @p refactorize false reuses the numeric factorization
+     * (direct solvers) of the previous call on the same matrix as is, for
+     * methods that keep one matrix for many right-hand sides (simplified
+     * Newton); iterative solvers keep their preconditioner anyway.
      */
     void
-    solve(const MatrixType &A, VectorType &x, const VectorType &b);
+    solve(const MatrixType &A,
+          VectorType       &x,
+          const VectorType &b,
+          const bool        refactorize = true);
 
     const LinearSolverStatistics &
     statistics() const

@@ -8,6 +8,7 @@
 #include <tissuefem/solvers/linear_solver.h>
 #include <tissuefem/solvers/newton.h>
 
+#include <string>
 #include <vector>
 
 namespace tissuefem::time
@@ -26,6 +27,8 @@ namespace tissuefem::time
     double       end_time;
     double       time_step;
     unsigned int max_step_halvings;
+    /// Wall-clock seconds a step may take in an interactive loop.
+    double real_time_budget;
   };
 
   /// The state of the body at one instant: displacement, velocity and
@@ -51,6 +54,18 @@ namespace tissuefem::time
     double solve_seconds    = 0;
     /// Wall time of the whole step (set by the caller of advance()).
     double step_seconds = 0;
+    /// Steps of the integrator's own (adaptive) step size taken within
+    /// this call (1 for fixed-step methods).
+    unsigned int substeps = 1;
+    /// Jacobians evaluated (assembled or differenced) in this call.
+    unsigned int jacobian_evaluations = 0;
+    /// Energy taken out by the integrator's damping force in this call
+    /// (energy units; 0 without damping).
+    double damping_work = 0;
+    /// Stored (int Psi dV) and kinetic (1/2 v.M v, consistent mass)
+    /// energy of the state reached (set by the caller of advance()).
+    double stored_energy  = 0;
+    double kinetic_energy = 0;
   };
 
   /// What an integrator works with: the solid's operators and the solvers.
@@ -99,6 +114,14 @@ namespace tissuefem::time
     virtual void
     mesh_changed()
     {
+    }
+
+    /// What the integrator did over the whole run, for the screen (several
+    /// lines, each with its units), or empty.
+    virtual std::string
+    summary() const
+    {
+      return {};
     }
   };
 

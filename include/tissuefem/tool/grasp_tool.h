@@ -1,0 +1,107 @@
+#pragma once
+
+#include <deal.II/base/function_parser.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/tensor.h>
+
+#include <tissuefem/solid/solid.h>
+#include <tissuefem/time/interface.h>
+
+#include <fstream>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace tissuefem::tool
+{
+  using namespace dealii;
+
+  /// The 'Tool' subsection.
+  struct ToolParameters
+  {
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
+
+    bool        enabled = false;
+    std::string grasp_point, trajectory, trajectory_file, extrapolation;
+    double      radius = 0, grasp_time = 0, release_time = 0, haptic_rate = 0,
+           haptic_budget = 0;
+  };
+
+  /**
+   * The user's hand (Jeffrey section 2, the "laparoscopic surgery
+   * workstation"): at 'Grasp time' the vertices within 'Grasp radius' of
+   * 'Grasp point' (reference coordinates) are held; their displacement then
+   * follows the tool, u = u_grasp + d(t) - d(t_grasp), with d the
+   * 'Trajectory' expression of t or the positions of a recorded
+   * 'Trajectory file'; at 'Release time' they are let go.
+   *
+   * After every simulation step the force the tissue exerts on the tool
+   * (minus the reaction at the held vertices) goes to tool_force.csv.
+   * Between steps a haptic device needs forces at 'Haptic rate': they are
+   * extrapolated from the steps so far, either linearly in time or
+   * linearly in the tool's position with a stiffness estimated from the
+   * observed force and position changes (a Broyden secant update, the
+   * data-driven counterpart of Picinbono's force extrapolation from the
+   * contact nodes' stiffness), and written to haptic_force.csv with their
+   * error against the force the simulation then computed (interpolated
+   * linearly between its steps to the haptic instant).
+   */
+  template <int dim>
+  class GraspTool
+  {
+  public:
+    GraspTool(const ToolParameters &parameters, const Triangulation<dim> &mesh);
+
+    /// Grasps or releases if the time has come (call before each step).
+    /// Returns whether the constraints changed: the caller must have reset
+    /// its linear solvers before and tell the integrator after.
+    bool
+    due(const double time) const;
+    void
+    act(const time::State &state, solid::Solid<dim> &solid);
+
+    /// Opens tool_force.csv and haptic_force.csv in @p directory (process
+    /// 0 writes).
+    void
+    open(const std::string &directory);
+
+    /// Records the force after a step (every process calls) and returns
+    /// it (the force the tissue exerts on the tool, force units).
+    Tensor<1, dim>
+    record(const time::State &state, solid::Solid<dim> &solid);
+
+    /// The haptic report: updates, share within the budget, extrapolation
+    /// error.
+    std::string
+    summary() const;
+
+    /// The tool's displacement d(t) (length units).
+    Tensor<1, dim>
+    displacement(const double time) const;
+
+  private:
+    ToolParameters              parameters;
+    Point<dim>                  grasp_point;
+    std::vector<unsigned int>   vertices;
+    std::unique_ptr<FunctionParser<dim>> trajectory;
+    std::vector<std::vector<double>>     table; // t, x, y[, z]
+    bool                        holding = false, released = false;
+    double                      grasp_time_actual = 0;
+
+    std::ofstream force_file, haptic_file;
+
+    // Force history for extrapolation.
+    std::optional<double>       last_time;
+    Tensor<1, dim>              last_force, last_position, rate;
+    Tensor<2, dim>              stiffness;
+    bool                        have_rate = false, held_at_last_record = false;
+    double                      next_haptic_time = 0;
+    unsigned int                haptic_updates = 0, within_budget = 0;
+    double                      max_error = 0, sum_error = 0,
+           max_force = 0;
+  };
+} // namespace tissuefem::tool

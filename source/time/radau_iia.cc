@@ -1,0 +1,871 @@
+#include <deal.II/base/tensor.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
+
+#include <tissuefem/base/input_error.h>
+#include <tissuefem/base/parameter_tools.h>
+#include <tissuefem/base/timing.h>
+#include <tissuefem/time/interface.h>
+#include <tissuefem/time/nodal.h>
+#include <tissuefem/time/stiffness.h>
+
+#include <Epetra_CrsMatrix.h>
+
+#include <array>
+#include <cmath>
+#include <complex>
+#include <limits>
+#include <sstream>
+
+namespace tissuefem::time
+{
+  namespace
+  {
+    // The 3-stage Radau IIA method (Hairer and Wanner, Solving ODEs II,
+    // IV.5 and their code RADAU5; Jeffrey appendix D with ERRATA item 8):
+    // nodes c, and the transformation T with T^-1 A^-1 T = [gamma 0 0; 0
+    // alpha -beta; 0 beta alpha].
+    const double s6 = std::sqrt(6.);
+    const double c1 = (4. - s6) / 10., c2 = (4. + s6) / 10.;
+    const double gamma_hat = 3.637834252744496, alpha_hat = 2.681082873627752,
+                 beta_hat = 3.050430199247411;
+    const double T[3][3]  = {{9.1232394870892942792e-02,
+                              -0.14125529502095420843,
+                              -3.0029194105147424492e-02},
+                             {0.24171793270710701896,
+                              0.20412935229379993199,
+                              0.38294211275726193779},
+                             {0.96604818261509293619, 1., 0.}};
+    const double TI[3][3] = {
+      {4.3255798900631553510, 0.33919925181580986954, 0.54177053993587487119},
+      {-4.1787185915519047273, -0.32768282076106238708, 0.47662355450055045196},
+      {-0.50287263494578687595,
+       2.5719269498556054292,
+       -0.59603920482822492497}};
+    // The Butcher matrix A (Hairer and Wanner, table IV.5.6), whose
+    // inverse gives boundary velocities from prescribed stage
+    // displacements.
+    const double       A[3][3]   = {{(88. - 7. * s6) / 360.,
+                                     (296. - 169. * s6) / 1800.,
+                                     (-2. + 3. * s6) / 225.},
+                                    {(296. + 169. * s6) / 1800.,
+                                     (88. + 7. * s6) / 360.,
+                                     (-2. - 3. * s6) / 225.},
+                                    {(16. - s6) / 36., (16. + s6) / 36., 1. / 9.}};
+    const Tensor<2, 3> inverse_a = invert(Tensor<2, 3>(A));
+    // The error estimate's weights (ERRATA item 8, D.22, times gamma_hat).
+    const double dd1 = -(13. + 7. * s6) / 3., dd2 = (-13. + 7. * s6) / 3.,
+                 dd3 = -1. / 3.;
+    // Quadrature weights b_i = a_3i.
+    const double b1 = (16. - s6) / 36., b2 = (16. + s6) / 36., b3 = 1. / 9.;
+  } // namespace
+
+  /**
+   * Jeffrey's implicit integrator (report section 3.3 and appendices D-E):
+   * the 3-stage Radau IIA method, order 5, L-stable, with an adaptive step,
+   * for the first-order form of eq 10 with the row-sum lumped mass m and
+   * mass-proportional damping gamma = c m (eq D.18):
+   *
+   *   u' = v,   v' = (f_ext(t) - f_int(u)) / m - c v.
+   *
+   * Each call of advance() propagates over one 'Time step' (the report's
+   * interval Delta t) with as many Runge-Kutta steps h as the error
+   * estimate allows. The stage equations are solved by simplified Newton
+   * in Hairer's transformed variables (D.16-D.17): one real system with
+   * (gamma_hat/h) I - J and one complex with ((alpha_hat + i beta_hat)/h) I -
+   * J. With J = [0 I; -K/m -c] each reduces to the displacements,
+   * (K + s M) x = M (r_v + (sigma + c) r_u), s = sigma (sigma + c); the
+   * complex one is solved as its real 2n x 2n form. 'Jacobian' selects K
+   * (appendix E): analytical (the AD tangent), numerical (differenced
+   * forces) or simplified (K = 0: diagonal, nothing assembled or
+   * factorized). The Jacobian is re-evaluated at the start of a step only
+   * when the previous Newton iteration contracted slowly (theta > 0.001),
+   * and the matrices are refactorized when h changes by more than 20 %,
+   * as RADAU5 does. Step size control, Newton stopping test and starting
+   * values (the collocation polynomial of the last step, D.19 and
+   * D.24-D.26 corrected) follow RADAU5; the embedded error estimate is
+   * D.21-D.22.
+   */
+  class RadauIIA : public Interface
+  {
+  public:
+    explicit RadauIIA(const ParameterHandler &prm)
+    {
+      auto &p = const_cast<ParameterHandler &>(prm);
+      p.enter_subsection("Time integration");
+      p.enter_subsection("Radau IIA");
+      damping       = p.get_double("Damping ratio");
+      jacobian_kind = p.get("Jacobian");
+      rtol          = p.get_double("Relative tolerance");
+      atol_u        = p.get_double("Absolute tolerance");
+      atol_v        = p.get_double("Absolute velocity tolerance");
+      adaptive      = p.get_bool("Adaptive step");
+      max_newton    = p.get_integer("Maximum Newton iterations");
+      p.leave_subsection();
+      p.leave_subsection();
+      const std::string section = "Time integration/Radau IIA/";
+      require(std::isfinite(damping) && damping >= 0,
+              section + "Damping ratio",
+              "must be >= 0");
+      require(std::isfinite(rtol) && rtol > 0 && rtol < 1,
+              section + "Relative tolerance",
+              "must lie in (0, 1)");
+      require(std::isfinite(atol_u) && atol_u > 0,
+              section + "Absolute tolerance",
+              "must be > 0");
+      require(std::isfinite(atol_v) && atol_v > 0,
+              section + "Absolute velocity tolerance",
+              "must be > 0");
+      stiffness = std::make_unique<Stiffness>(jacobian_kind);
+    }
+
+    static void
+    declare_parameters(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Radau IIA");
+      prm.declare_entry("Damping ratio",
+                        "0",
+                        Patterns::Double(0),
+                        "Mass-proportional damping gamma/m (1/s if SI), as "
+                        "in the damped central difference (Jeffrey eq 10).");
+      prm.declare_entry("Jacobian",
+                        "analytical",
+                        Patterns::Selection(Stiffness::choices()),
+                        "The stiffness in the Newton matrix (Jeffrey "
+                        "appendix E): analytical = the automatically "
+                        "differentiated tangent; numerical = forward "
+                        "differences of the internal force; simplified = "
+                        "none (mass and damping only, never assembled).");
+      prm.declare_entry("Relative tolerance",
+                        "1e-4",
+                        Patterns::Double(0),
+                        "Local error tolerance relative to |u|, |v|.");
+      prm.declare_entry("Absolute tolerance",
+                        "1e-6",
+                        Patterns::Double(0),
+                        "Local error tolerance for displacements (length "
+                        "units).");
+      prm.declare_entry("Absolute velocity tolerance",
+                        "1e-4",
+                        Patterns::Double(0),
+                        "Local error tolerance for velocities (length per "
+                        "time unit).");
+      prm.declare_entry("Adaptive step",
+                        "true",
+                        Patterns::Bool(),
+                        "Choose the Runge-Kutta step from the error "
+                        "estimate; false takes steps of 'Time step' "
+                        "(halved only when Newton fails), for order "
+                        "studies.");
+      prm.declare_entry("Maximum Newton iterations",
+                        "7",
+                        Patterns::Integer(1, 100),
+                        "Simplified Newton iterations per Runge-Kutta step "
+                        "before the step is retried with a smaller h.");
+      prm.leave_subsection();
+    }
+
+    void
+    initialize(Context &c, State &state) override
+    {
+      context = &c;
+      check_mesh();
+      set_up_vectors(state.u);
+      derivative(state.time, state.u, state.v, f0u, f0v);
+      state.a = f0v;
+      h       = c.time.time_step;
+    }
+
+    StepReport
+    advance(State &state, const double end_time) override
+    {
+      StepReport   report;
+      const auto   start = std::chrono::steady_clock::now();
+      const double target
+        = std::min(state.time + context->time.time_step, end_time);
+      const double interval_start = state.time;
+      report.substeps             = 0;
+      while (target - state.time > 1e-12 * context->time.time_step)
+        {
+          if (!adaptive)
+            h = std::min(h, context->time.time_step);
+          double step = h;
+          // Do not leave a sliver to the end of the interval.
+          const bool clipped = state.time + 1.05 * step >= target;
+          if (clipped)
+            step = target - state.time;
+          if (stiffness->assembled() && !jacobian_current)
+            {
+              const auto assembly_start = std::chrono::steady_clock::now();
+              stiffness->evaluate(context->solid, state.u, state.time);
+              report.assembly_seconds += seconds_since(assembly_start);
+              ++report.jacobian_evaluations;
+              jacobian_current = jacobian_fresh = true;
+              factorized_step                   = 0;
+            }
+          const Attempt attempt = try_step(state, step);
+          report.newton_iterations += attempt.newton_iterations;
+          if (!attempt.converged || (adaptive && attempt.error >= 1.))
+            {
+              ++report.rejected_attempts;
+              h = attempt.next_step;
+              if (h < 1e-10 * context->time.time_step)
+                throw SolverError(
+                  "Radau IIA: the Runge-Kutta step fell below 1e-10 times "
+                  "the time step at t = "
+                  + std::to_string(state.time)
+                  + " (Newton does not converge or the error estimate "
+                    "stays above the tolerance)");
+              // Newton failed with a Jacobian of an older state: refresh.
+              if (!attempt.converged && !jacobian_fresh)
+                jacobian_current = false;
+              continue;
+            }
+          accept(state, step, report);
+          ++report.substeps;
+          step_sum += step;
+          // A step cut short at the interval's end says nothing against
+          // the step the controller had.
+          if (!adaptive)
+            h = context->time.time_step;
+          else if (!clipped || attempt.next_step < step)
+            h = attempt.next_step;
+        }
+      report.dt = target - interval_start;
+      ++intervals;
+      totals.newton_iterations += report.newton_iterations;
+      totals.jacobian_evaluations += report.jacobian_evaluations;
+      totals.substeps += report.substeps;
+      totals.rejected_attempts += report.rejected_attempts;
+      report.solve_seconds = seconds_since(start) - report.assembly_seconds;
+      return report;
+    }
+
+    void
+    mesh_changed() override
+    {
+      check_mesh();
+      VectorType u;
+      context->solid.initialize_vector(u);
+      set_up_vectors(u);
+      stiffness->reset();
+      complex_solver.reset();
+      jacobian_current = false;
+      have_polynomial  = false;
+    }
+
+    std::string
+    summary() const override
+    {
+      std::ostringstream s;
+      const double       n = std::max(intervals, 1u);
+      s << "Radau IIA (" << jacobian_kind << " Jacobian): " << intervals
+        << " intervals of 'Time step'; per interval: mean Runge-Kutta step "
+        << (totals.substeps > 0 ? step_sum / totals.substeps : 0.)
+        << " (time units), Runge-Kutta steps " << totals.substeps / n
+        << ", rejected " << totals.rejected_attempts / n
+        << ", Jacobian evaluations " << totals.jacobian_evaluations / n
+        << ", Newton iterations " << totals.newton_iterations / n;
+      return s.str();
+    }
+
+  private:
+    struct Attempt
+    {
+      bool         converged         = false;
+      unsigned int newton_iterations = 0;
+      double       error             = 0;
+      double       next_step         = 0;
+    };
+
+    // Parameters.
+    double       damping = 0, rtol = 0, atol_u = 0, atol_v = 0;
+    std::string  jacobian_kind;
+    bool         adaptive   = true;
+    unsigned int max_newton = 7;
+
+    Context                   *context = nullptr;
+    std::unique_ptr<Stiffness> stiffness;
+    const VectorType          *mass = nullptr;
+    VectorType                 free; // 1 on free entries, 0 on constrained
+
+    // Stage increments Z, transformed W, derivatives F, the polynomial of
+    // the last step (for starting values), and f at the step's start.
+    std::array<VectorType, 3> zu, zv, wu, wv, fu, fv, pu, pv;
+    VectorType                f0u, f0v;
+    bool                      have_polynomial = false;
+    double                    last_step       = 0;
+
+    // Newton matrices: K + s M (real), its complex 2n form, and solvers.
+    MatrixType                             real_matrix, complex_matrix;
+    std::unique_ptr<solvers::LinearSolver> complex_solver;
+    IndexSet                               doubled;
+    double                                 factorized_step  = 0;
+    bool                                   jacobian_current = false;
+
+    double       h         = 0;
+    double       faccon    = 1;
+    double       theta     = 1;
+    double       step_sum  = 0;
+    unsigned int intervals = 0;
+    StepReport   totals;
+    bool         jacobian_fresh   = false; // evaluated at the present state
+    bool         real_refactorize = true, complex_refactorize = true;
+
+    void
+    check_mesh() const
+    {
+      if (context->solid.has_hanging_nodes())
+        throw InputError("Parameter 'Time integration/Integrator': Radau IIA "
+                         "uses lumped masses, which are not condensed at "
+                         "hanging nodes; use it without mesh refinement");
+    }
+
+    void
+    set_up_vectors(const VectorType &like)
+    {
+      auto &solid = context->solid;
+      mass        = &solid.lumped_mass();
+      for (unsigned int i = 0; i < local_size(like); ++i)
+        if (!(local_entries(*mass)[i] > 0))
+          throw InputError("Parameter 'Time integration/Integrator': the "
+                           "row-sum lumped mass is not positive at some "
+                           "node (P2 simplices); use linear elements");
+      free = like;
+      free = 1.;
+      solid.zero_constrained_entries(free);
+      for (auto *set : {&zu, &zv, &wu, &wv, &fu, &fv, &pu, &pv})
+        for (auto &v : *set)
+          v.reinit(like, false);
+      f0u.reinit(like, false);
+      f0v.reinit(like, false);
+      const IndexSet owned = like.locally_owned_elements();
+      const auto     n     = owned.size();
+      doubled              = IndexSet(2 * n);
+      doubled.add_indices(owned);
+      doubled.add_indices(owned, n);
+    }
+
+    /// f(t, y) for y = (u, v): (v, (f_ext - f_int(u))/m - c v).
+    void
+    derivative(const double      t,
+               const VectorType &u,
+               const VectorType &v,
+               VectorType       &du,
+               VectorType       &dv)
+    {
+      VectorType external;
+      context->solid.internal_force(u, dv);
+      context->solid.external_force(t, external);
+      dv.sadd(-1., 1., external);
+      double       *a = local_entries(dv);
+      const double *m = local_entries(*mass), *vp = local_entries(v);
+      for (unsigned int i = 0; i < local_size(dv); ++i)
+        a[i] = a[i] / m[i] - damping * vp[i];
+      du = v;
+    }
+
+    /// The RMS norm over free entries of (x_u, x_v) scaled by atol + rtol
+    /// |y|, y the larger of two states.
+    double
+    scaled_norm(const std::vector<const VectorType *> &xu,
+                const std::vector<const VectorType *> &xv,
+                const State                           &y0,
+                const VectorType                      *u1 = nullptr,
+                const VectorType                      *v1 = nullptr) const
+    {
+      const double *is_free = local_entries(free);
+      const double *u0 = local_entries(y0.u), *v0 = local_entries(y0.v);
+      double        sum = 0, count = 0;
+      for (unsigned int i = 0; i < local_size(free); ++i)
+        if (is_free[i] > 0)
+          {
+            double su = std::abs(u0[i]), sv = std::abs(v0[i]);
+            if (u1)
+              su = std::max(su, std::abs(local_entries(*u1)[i]));
+            if (v1)
+              sv = std::max(sv, std::abs(local_entries(*v1)[i]));
+            su = atol_u + rtol * su;
+            sv = atol_v + rtol * sv;
+            for (const auto *x : xu)
+              sum += std::pow(local_entries(*x)[i] / su, 2);
+            for (const auto *x : xv)
+              sum += std::pow(local_entries(*x)[i] / sv, 2);
+            count += xu.size() + xv.size();
+          }
+      sum   = Utilities::MPI::sum(sum, parallel_tools::communicator());
+      count = Utilities::MPI::sum(count, parallel_tools::communicator());
+      return count > 0 ? std::sqrt(sum / count) : 0.;
+    }
+
+    /// Builds K + s M and its complex counterpart for the step h.
+    void
+    factorize(const double step);
+
+    /// Solves ((gamma_hat/h) I - J) x = r, in place on (r_u, r_v).
+    void
+    solve_real(const double step, VectorType &ru, VectorType &rv);
+
+    /// Solves (((alpha_hat + i beta_hat)/h) I - J)(x + iy) = r + is, in
+    /// place on (r_u, r_v) (real parts) and (s_u, s_v) (imaginary).
+    void
+    solve_complex(const double step,
+                  VectorType  &ru,
+                  VectorType  &rv,
+                  VectorType  &su,
+                  VectorType  &sv);
+
+    Attempt
+    try_step(const State &state, const double step);
+
+    void
+    accept(State &state, const double step, StepReport &report);
+  };
+  void
+  RadauIIA::factorize(const double step)
+  {
+    const double *m       = local_entries(*mass);
+    const double *is_free = local_entries(free);
+    const auto   &K       = stiffness->matrix().trilinos_matrix();
+    const auto    n       = context->solid.n_dofs();
+
+    // Real: K + s M, s = sigma (sigma + c), sigma = gamma_hat / h.
+    const double sigma = gamma_hat / step;
+    const double s     = sigma * (sigma + damping);
+    real_matrix.copy_from(stiffness->matrix());
+    {
+      auto &R = const_cast<Epetra_CrsMatrix &>(real_matrix.trilinos_matrix());
+      for (int r = 0; r < R.NumMyRows(); ++r)
+        if (is_free[r] > 0)
+          {
+            int     length;
+            double *values;
+            int    *columns;
+            R.ExtractMyRowView(r, length, values, columns);
+            for (int k = 0; k < length; ++k)
+              if (R.ColMap().GID(columns[k]) == R.RowMap().GID(r))
+                values[k] += s * m[r];
+          }
+    }
+    real_refactorize = true;
+
+    // Complex: K + (p + iq) M as [K + pM, -qM; qM, K + pM] on rows i and
+    // i + n.
+    const std::complex<double> sc(alpha_hat / step, beta_hat / step);
+    const std::complex<double> ss = sc * (sc + damping);
+    const double               p = ss.real(), q = ss.imag();
+    const bool                 first = complex_solver == nullptr;
+    if (first)
+      {
+        TrilinosWrappers::SparsityPattern pattern(
+          doubled, doubled, parallel_tools::communicator());
+        for (int r = 0; r < K.NumMyRows(); ++r)
+          {
+            int     length;
+            double *values;
+            int    *columns;
+            K.ExtractMyRowView(r, length, values, columns);
+            const types::global_dof_index        row = K.RowMap().GID(r);
+            std::vector<types::global_dof_index> cols(length), shifted(length);
+            for (int k = 0; k < length; ++k)
+              {
+                cols[k]    = K.ColMap().GID(columns[k]);
+                shifted[k] = cols[k] + n;
+              }
+            cols.push_back(row + n);
+            shifted.push_back(row);
+            pattern.add_entries(row, cols.begin(), cols.end());
+            pattern.add_entries(row + n, shifted.begin(), shifted.end());
+          }
+        pattern.compress();
+        complex_matrix.reinit(pattern);
+        // The 2n system is not symmetric: always a direct solver.
+        solvers::LinearSolverParameters direct;
+        direct.type               = "MUMPS";
+        direct.relative_tolerance = 1e-10;
+        direct.max_iterations     = 1;
+        direct.rebuild_factor     = 1;
+        complex_solver = std::make_unique<solvers::LinearSolver>(direct);
+      }
+    for (int r = 0; r < K.NumMyRows(); ++r)
+      {
+        int     length;
+        double *values;
+        int    *columns;
+        K.ExtractMyRowView(r, length, values, columns);
+        const types::global_dof_index        row = K.RowMap().GID(r);
+        std::vector<types::global_dof_index> cols(length + 1),
+          shifted(length + 1);
+        std::vector<double> entries(length + 1);
+        for (int k = 0; k < length; ++k)
+          {
+            cols[k]    = K.ColMap().GID(columns[k]);
+            shifted[k] = cols[k] + n;
+            entries[k] = values[k];
+            if (cols[k] == row && is_free[r] > 0)
+              entries[k] += p * m[r];
+          }
+        const double coupling = is_free[r] > 0 ? q * m[r] : 0.;
+        cols[length]          = row + n;
+        entries[length]       = -coupling;
+        complex_matrix.set(row, cols.size(), cols.data(), entries.data());
+        shifted[length] = row;
+        entries[length] = coupling;
+        complex_matrix.set(row + n,
+                           shifted.size(),
+                           shifted.data(),
+                           entries.data());
+      }
+    complex_matrix.compress(VectorOperation::insert);
+    complex_refactorize = true;
+  }
+
+
+  void
+  RadauIIA::solve_real(const double step, VectorType &ru, VectorType &rv)
+  {
+    const double       sigma = gamma_hat / step;
+    const double       s     = sigma * (sigma + damping);
+    const double      *m = local_entries(*mass), *is_free = local_entries(free);
+    double            *xu = local_entries(ru), *xv = local_entries(rv);
+    const unsigned int n = local_size(ru);
+    if (!stiffness->assembled())
+      {
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            const double x
+              = is_free[i] * (xv[i] + (sigma + damping) * xu[i]) / s;
+            xv[i] = sigma * x - is_free[i] * xu[i];
+            xu[i] = x;
+          }
+        return;
+      }
+    VectorType b(ru), x(ru);
+    double    *bp = local_entries(b);
+    for (unsigned int i = 0; i < n; ++i)
+      bp[i] = is_free[i] * m[i] * (xv[i] + (sigma + damping) * xu[i]);
+    x = 0.;
+    context->linear_solver.solve(real_matrix, x, b, real_refactorize);
+    real_refactorize = false;
+    const double *xp = local_entries(x);
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        xv[i] = sigma * xp[i] - is_free[i] * xu[i];
+        xu[i] = xp[i];
+      }
+  }
+
+
+  void
+  RadauIIA::solve_complex(const double step,
+                          VectorType  &ru,
+                          VectorType  &rv,
+                          VectorType  &su,
+                          VectorType  &sv)
+  {
+    using C                    = std::complex<double>;
+    const C            sigma   = C(alpha_hat, beta_hat) / step;
+    const C            s       = sigma * (sigma + damping);
+    const double      *m       = local_entries(*mass);
+    const double      *is_free = local_entries(free);
+    double            *pu = local_entries(ru), *pv = local_entries(rv);
+    double            *qu = local_entries(su), *qv = local_entries(sv);
+    const unsigned int n = local_size(ru);
+    std::vector<C>     x(n);
+    if (!stiffness->assembled())
+      for (unsigned int i = 0; i < n; ++i)
+        x[i] = is_free[i]
+               * (C(pv[i], qv[i]) + (sigma + damping) * C(pu[i], qu[i])) / s;
+    else
+      {
+        VectorType b(doubled, parallel_tools::communicator()), y(b);
+        double    *bp = local_entries(b);
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            const C rhs
+              = is_free[i] * m[i]
+                * (C(pv[i], qv[i]) + (sigma + damping) * C(pu[i], qu[i]));
+            bp[i]     = rhs.real();
+            bp[i + n] = rhs.imag();
+          }
+        complex_solver->solve(complex_matrix, y, b, complex_refactorize);
+        complex_refactorize = false;
+        const double *yp    = local_entries(y);
+        for (unsigned int i = 0; i < n; ++i)
+          x[i] = C(yp[i], yp[i + n]);
+      }
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        const C v = sigma * x[i] - is_free[i] * C(pu[i], qu[i]);
+        pu[i]     = x[i].real();
+        qu[i]     = x[i].imag();
+        pv[i]     = v.real();
+        qv[i]     = v.imag();
+      }
+  }
+
+
+  RadauIIA::Attempt
+  RadauIIA::try_step(const State &state, const double step)
+  {
+    Attempt      attempt;
+    auto        &solid = context->solid;
+    const double eps   = std::numeric_limits<double>::epsilon();
+    const double t0    = state.time;
+    const double c[3]  = {c1, c2, 1.};
+    if (stiffness->assembled() && factorized_step != step)
+      {
+        factorize(step);
+        factorized_step = step;
+      }
+
+    // Starting values: the last step's collocation polynomial extended
+    // (RADAU5; Jeffrey D.19, D.24-D.26 with ERRATA item 8), else zero.
+    for (unsigned int i = 0; i < 3; ++i)
+      {
+        zu[i] = 0.;
+        zv[i] = 0.;
+        if (have_polynomial)
+          {
+            const double cq = c[i] * step / last_step;
+            const double w0 = cq, w1 = cq * (cq - (c2 - 1.)),
+                         w2 = w1 * (cq - (c1 - 1.));
+            zu[i].add(w0, pu[0], w1, pu[1]);
+            zu[i].add(w2, pu[2]);
+            zv[i].add(w0, pv[0], w1, pv[1]);
+            zv[i].add(w2, pv[2]);
+          }
+        // Prescribed entries: g(t0 + c_i h) - u0, and velocities that
+        // make the stage polynomial interpolate them (V = A^-1 Z / h).
+        VectorType stage(state.u);
+        stage += zu[i];
+        solid.apply_dirichlet_values(t0 + c[i] * step, stage);
+        stage -= state.u;
+        zu[i] = stage;
+      }
+    {
+      const double *is_free = local_entries(free);
+      const double *v0      = local_entries(state.v);
+      for (unsigned int i = 0; i < 3; ++i)
+        {
+          double *zvp = local_entries(zv[i]);
+          for (unsigned int k = 0; k < local_size(free); ++k)
+            if (!(is_free[k] > 0))
+              {
+                double v = 0;
+                for (unsigned int j = 0; j < 3; ++j)
+                  v += inverse_a[i][j] * local_entries(zu[j])[k];
+                zvp[k] = v / step - v0[k];
+              }
+        }
+    }
+    for (unsigned int i = 0; i < 3; ++i)
+      {
+        wu[i] = 0.;
+        wv[i] = 0.;
+        for (unsigned int j = 0; j < 3; ++j)
+          {
+            wu[i].add(TI[i][j], zu[j]);
+            wv[i].add(TI[i][j], zv[j]);
+          }
+      }
+
+    const double fnewt
+      = std::max(10. * eps / rtol, std::min(0.03, std::sqrt(rtol)));
+    faccon                           = std::pow(std::max(faccon, eps), 0.8);
+    theta                            = 1;
+    double                    dynold = 0, thqold = 0;
+    VectorType                u(state.u), v(state.v);
+    std::array<VectorType, 3> ru, rv;
+    for (unsigned int newt = 0; newt < max_newton; ++newt)
+      {
+        attempt.newton_iterations = newt + 1;
+        try
+          {
+            for (unsigned int i = 0; i < 3; ++i)
+              {
+                u = state.u;
+                u += zu[i];
+                v = state.v;
+                v += zv[i];
+                derivative(t0 + c[i] * step, u, v, fu[i], fv[i]);
+              }
+          }
+        catch (const SolverError &)
+          {
+            // An inverted element at a stage: a smaller step.
+            attempt.next_step = 0.5 * step;
+            return attempt;
+          }
+        // r = T^-1 F - Lambda W / h on the free entries.
+        for (unsigned int i = 0; i < 3; ++i)
+          {
+            ru[i].reinit(state.u, false);
+            rv[i].reinit(state.u, false);
+            for (unsigned int j = 0; j < 3; ++j)
+              {
+                ru[i].add(TI[i][j], fu[j]);
+                rv[i].add(TI[i][j], fv[j]);
+              }
+          }
+        ru[0].add(-gamma_hat / step, wu[0]);
+        rv[0].add(-gamma_hat / step, wv[0]);
+        ru[1].add(-alpha_hat / step, wu[1], beta_hat / step, wu[2]);
+        rv[1].add(-alpha_hat / step, wv[1], beta_hat / step, wv[2]);
+        ru[2].add(-beta_hat / step, wu[1], -alpha_hat / step, wu[2]);
+        rv[2].add(-beta_hat / step, wv[1], -alpha_hat / step, wv[2]);
+        for (unsigned int i = 0; i < 3; ++i)
+          {
+            ru[i].scale(free);
+            rv[i].scale(free);
+          }
+        solve_real(step, ru[0], rv[0]);
+        solve_complex(step, ru[1], rv[1], ru[2], rv[2]);
+
+        const double dyno = scaled_norm({&ru[0], &ru[1], &ru[2]},
+                                        {&rv[0], &rv[1], &rv[2]},
+                                        state);
+        if (!std::isfinite(dyno))
+          {
+            attempt.next_step = 0.5 * step;
+            return attempt;
+          }
+        if (newt >= 1)
+          {
+            const double thq = dyno / dynold;
+            theta            = (newt == 1) ? thq : std::sqrt(thq * thqold);
+            thqold           = thq;
+            if (theta >= 0.99)
+              {
+                attempt.next_step = 0.5 * step;
+                return attempt;
+              }
+            faccon = theta / (1. - theta);
+            const double dyth
+              = faccon * dyno * std::pow(theta, max_newton - 1. - newt) / fnewt;
+            if (dyth >= 1.)
+              {
+                const double qnewt = std::max(1e-4, std::min(20., dyth));
+                attempt.next_step
+                  = 0.8 * std::pow(qnewt, -1. / (4. + max_newton - 1. - newt))
+                    * step;
+                return attempt;
+              }
+          }
+        dynold = std::max(dyno, eps);
+        for (unsigned int i = 0; i < 3; ++i)
+          {
+            wu[i] += ru[i];
+            wv[i] += rv[i];
+          }
+        for (unsigned int i = 0; i < 3; ++i)
+          {
+            zu[i] = 0.;
+            zv[i] = 0.;
+            for (unsigned int j = 0; j < 3; ++j)
+              {
+                zu[i].add(T[i][j], wu[j]);
+                zv[i].add(T[i][j], wv[j]);
+              }
+          }
+        if (faccon * dyno <= fnewt)
+          {
+            attempt.converged = true;
+            break;
+          }
+      }
+    if (!attempt.converged)
+      {
+        attempt.next_step = 0.5 * step;
+        return attempt;
+      }
+
+    // Error estimate (D.21-D.22): (gamma_hat/h I - J)^-1 (f0 + sum dd_i
+    // Z_i / h).
+    VectorType eu(f0u), ev(f0v);
+    eu.add(dd1 / step, zu[0], dd2 / step, zu[1]);
+    eu.add(dd3 / step, zu[2]);
+    ev.add(dd1 / step, zv[0], dd2 / step, zv[1]);
+    ev.add(dd3 / step, zv[2]);
+    eu.scale(free);
+    ev.scale(free);
+    solve_real(step, eu, ev);
+    VectorType u1(state.u), v1(state.v);
+    u1 += zu[2];
+    v1 += zv[2];
+    attempt.error = std::max(scaled_norm({&eu}, {&ev}, state, &u1, &v1), 1e-10);
+    // RADAU5's step control: a safety factor that shrinks with the Newton
+    // iterations used, h changing by a factor within [1/5, 8].
+    const double fac
+      = std::min(0.9,
+                 0.9 * (1. + 2. * max_newton)
+                   / (attempt.newton_iterations + 2. * max_newton));
+    const double quot
+      = std::max(1. / 8., std::min(5., std::pow(attempt.error, 0.25) / fac));
+    attempt.next_step = step / quot;
+    // Keep h (and the factorization) when it would grow by less than 20 %.
+    if (attempt.error < 1. && theta <= 1e-3 && attempt.next_step >= step
+        && attempt.next_step <= 1.2 * step)
+      attempt.next_step = step;
+    return attempt;
+  }
+
+
+  void
+  RadauIIA::accept(State &state, const double step, StepReport &report)
+  {
+    // Energy taken out by the damping force, c int v^T M v dt, by the
+    // method's own quadrature (weights b_i = a_3i).
+    if (damping > 0)
+      {
+        const double *m = local_entries(*mass), *v0 = local_entries(state.v);
+        const double  b[3] = {b1, b2, b3};
+        double        work = 0;
+        for (unsigned int i = 0; i < 3; ++i)
+          {
+            const double *z = local_entries(zv[i]);
+            for (unsigned int k = 0; k < local_size(state.v); ++k)
+              work += b[i] * m[k] * std::pow(v0[k] + z[k], 2);
+          }
+        report.damping_work
+          += damping * step
+             * Utilities::MPI::sum(work, parallel_tools::communicator());
+      }
+    // The collocation polynomial in Newton's form for the next starting
+    // values (RADAU5's CONT; ERRATA item 8 corrects D.26's divisor).
+    for (auto [z, p] : {std::make_pair(&zu, &pu), std::make_pair(&zv, &pv)})
+      {
+        auto      &Z = *z;
+        auto      &P = *p;
+        VectorType ak(Z[0]), acont3(Z[0]);
+        P[0] = Z[1];
+        P[0] -= Z[2];
+        P[0] /= (c2 - 1.);
+        ak -= Z[1];
+        ak /= (c1 - c2);
+        acont3 /= c1;
+        acont3.sadd(-1. / c2, 1. / c2, ak);
+        P[1] = ak;
+        P[1] -= P[0];
+        P[1] /= (c1 - 1.);
+        P[2] = P[1];
+        P[2] -= acont3;
+      }
+    have_polynomial = true;
+    last_step       = step;
+    state.u += zu[2];
+    state.v += zv[2];
+    state.time += step;
+    derivative(state.time, state.u, state.v, f0u, f0v);
+    state.a = f0v;
+    // RADAU5 keeps the Jacobian while Newton contracts fast.
+    jacobian_fresh   = false;
+    jacobian_current = theta <= 1e-3;
+  }
+
+  TISSUEFEM_REGISTER_INTEGRATOR(
+    RadauIIA,
+    "radau iia",
+    "the 3-stage Radau IIA implicit Runge-Kutta method (order 5, adaptive "
+    "step; Jeffrey appendix D) with lumped mass and mass-proportional "
+    "damping; analytical, numerical or simplified Jacobian.")
+} // namespace tissuefem::time

@@ -1,0 +1,436 @@
+#include <deal.II/base/utilities.h>
+
+#include <tissuefem/base/input_error.h>
+#include <tissuefem/base/parallel.h>
+#include <tissuefem/base/timing.h>
+#include <tissuefem/tool/grasp_tool.h>
+
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+namespace tissuefem::tool
+{
+  void
+  ToolParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Tool");
+    prm.declare_entry("Grasp point",
+                      "",
+                      Patterns::Anything(),
+                      "Reference coordinates (comma separated) of the point "
+                      "the tool grasps; empty: no tool.");
+    prm.declare_entry("Grasp radius",
+                      "0",
+                      Patterns::Double(),
+                      "Vertices within this distance of 'Grasp point' "
+                      "(length units) are held; > 0 with a tool.");
+    prm.declare_entry("Trajectory",
+                      "0; 0; 0",
+                      Patterns::Anything(),
+                      "Displacement of the tool as muparser expressions of t "
+                      "(one per coordinate, separated by ';'; length "
+                      "units). The held vertices move by d(t) - d(grasp "
+                      "time).");
+    prm.declare_entry("Trajectory file",
+                      "",
+                      Patterns::Anything(),
+                      "A CSV file of tool positions recorded from a device: "
+                      "rows 't, x, y[, z]' (time and length units), times "
+                      "increasing; a first line that is not numeric is a "
+                      "header. Positions are interpolated linearly and held "
+                      "beyond the ends; d(t) is the position minus the "
+                      "first. Replaces 'Trajectory' when set.");
+    prm.declare_entry("Grasp time",
+                      "0",
+                      Patterns::Double(),
+                      "When the tool grasps (time units); it acts at the "
+                      "start of the first step at or after it.");
+    prm.declare_entry("Release time",
+                      "1e30",
+                      Patterns::Double(),
+                      "When the tool lets go (time units), > 'Grasp time'.");
+    prm.declare_entry("Haptic rate",
+                      "500",
+                      Patterns::Double(),
+                      "Force updates per unit time for the haptic device "
+                      "(Hz if SI), written to haptic_force.csv; > 0.");
+    prm.declare_entry("Force extrapolation",
+                      "position",
+                      Patterns::Selection("position|time"),
+                      "How the haptic force is extrapolated between "
+                      "simulation steps: 'position' = last force plus a "
+                      "secant stiffness (estimated from the force and tool "
+                      "position changes so far) times the tool's motion "
+                      "since; 'time' = linear in time from the last two "
+                      "steps.");
+    prm.declare_entry("Haptic budget",
+                      "0.002",
+                      Patterns::Double(),
+                      "Wall-clock seconds one haptic update may take (1/500 "
+                      "s); the end of a run reports the share within it.");
+    prm.leave_subsection();
+  }
+
+
+  void
+  ToolParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Tool");
+    grasp_point     = prm.get("Grasp point");
+    radius          = prm.get_double("Grasp radius");
+    trajectory      = prm.get("Trajectory");
+    trajectory_file = prm.get("Trajectory file");
+    grasp_time      = prm.get_double("Grasp time");
+    release_time    = prm.get_double("Release time");
+    haptic_rate     = prm.get_double("Haptic rate");
+    extrapolation   = prm.get("Force extrapolation");
+    haptic_budget   = prm.get_double("Haptic budget");
+    prm.leave_subsection();
+    enabled = !Utilities::trim(grasp_point).empty();
+    if (!enabled)
+      return;
+    require(std::isfinite(radius) && radius > 0,
+            "Tool/Grasp radius",
+            "must be > 0 (length units) when 'Grasp point' is set");
+    require(std::isfinite(grasp_time) && std::isfinite(release_time)
+              && release_time > grasp_time,
+            "Tool/Release time",
+            "must be finite and later than 'Grasp time'");
+    require(std::isfinite(haptic_rate) && haptic_rate > 0,
+            "Tool/Haptic rate",
+            "must be > 0 (updates per time unit)");
+    require(std::isfinite(haptic_budget) && haptic_budget > 0,
+            "Tool/Haptic budget",
+            "must be > 0 (seconds)");
+  }
+
+
+  namespace
+  {
+    std::vector<double>
+    numbers(const std::string &text, const std::string &what)
+    {
+      std::vector<double> values;
+      for (const auto &item : Utilities::split_string_list(text, ','))
+        {
+          std::size_t end = 0;
+          double      value;
+          try
+            {
+              value = std::stod(item, &end);
+            }
+          catch (...)
+            {
+              end = 0;
+            }
+          if (end != item.size() || !std::isfinite(value))
+            throw InputError(what + ": '" + item
+                             + "' is not a finite number");
+          values.push_back(value);
+        }
+      return values;
+    }
+  } // namespace
+
+
+  template <int dim>
+  GraspTool<dim>::GraspTool(const ToolParameters     &p,
+                            const Triangulation<dim> &mesh)
+    : parameters(p)
+  {
+    const auto coordinates
+      = numbers(p.grasp_point, "Parameter 'Tool/Grasp point'");
+    require(coordinates.size() == dim,
+            "Tool/Grasp point",
+            "needs " + std::to_string(dim) + " coordinates, got "
+              + std::to_string(coordinates.size()));
+    for (unsigned int d = 0; d < dim; ++d)
+      grasp_point[d] = coordinates[d];
+    const auto &points = mesh.get_vertices();
+    const auto &used   = mesh.get_used_vertices();
+    for (unsigned int v = 0; v < points.size(); ++v)
+      if (used[v] && points[v].distance(grasp_point) <= p.radius)
+        vertices.push_back(v);
+    require(!vertices.empty(),
+            "Tool/Grasp radius",
+            "holds no vertex: none lies within " + std::to_string(p.radius)
+              + " of 'Grasp point'");
+
+    if (!Utilities::trim(p.trajectory_file).empty())
+      {
+        std::ifstream in(p.trajectory_file);
+        require(static_cast<bool>(in),
+                "Tool/Trajectory file",
+                "cannot open '" + p.trajectory_file + "'");
+        std::string  line;
+        unsigned int number = 0;
+        while (std::getline(in, line))
+          {
+            ++number;
+            if (Utilities::trim(line).empty())
+              continue;
+            std::vector<double> row;
+            try
+              {
+                row = numbers(line, "");
+              }
+            catch (const InputError &)
+              {
+                if (number == 1)
+                  continue; // a header
+                throw InputError("File '" + p.trajectory_file + "', line "
+                                 + std::to_string(number)
+                                 + ": not a row of finite numbers");
+              }
+            if (row.size() != dim + 1)
+              throw InputError("File '" + p.trajectory_file + "', line "
+                               + std::to_string(number) + ": expected "
+                               + std::to_string(dim + 1)
+                               + " values (t and the coordinates), got "
+                               + std::to_string(row.size()));
+            if (!table.empty() && !(row[0] > table.back()[0]))
+              throw InputError("File '" + p.trajectory_file + "', line "
+                               + std::to_string(number)
+                               + ": times must increase");
+            table.push_back(row);
+          }
+        require(!table.empty(),
+                "Tool/Trajectory file",
+                "'" + p.trajectory_file + "' holds no positions");
+      }
+    else
+      {
+        trajectory = std::make_unique<FunctionParser<dim>>(dim);
+        try
+          {
+            trajectory->initialize(FunctionParser<dim>::default_variable_names() + ",t",
+                                   p.trajectory,
+                                   {},
+                                   true);
+          }
+        catch (...)
+          {
+            throw InputError("Parameter 'Tool/Trajectory': cannot parse '"
+                             + p.trajectory + "' as " + std::to_string(dim)
+                             + " expressions of t separated by ';'");
+          }
+      }
+    for (unsigned int d = 0; d < dim; ++d)
+      require(std::isfinite(displacement(p.grasp_time)[d]),
+              "Tool/Trajectory",
+              "is not finite at the grasp time");
+    next_haptic_time = 0;
+  }
+
+
+  template <int dim>
+  Tensor<1, dim>
+  GraspTool<dim>::displacement(const double time) const
+  {
+    Tensor<1, dim> d;
+    if (trajectory)
+      {
+        trajectory->set_time(time);
+        for (unsigned int c = 0; c < dim; ++c)
+          d[c] = trajectory->value(Point<dim>(), c);
+        return d;
+      }
+    // Linear interpolation in the recorded positions, held at the ends.
+    auto row = std::upper_bound(table.begin(),
+                                table.end(),
+                                time,
+                                [](const double t, const auto &r) {
+                                  return t < r[0];
+                                });
+    std::vector<double> position;
+    if (row == table.begin())
+      position = table.front();
+    else if (row == table.end())
+      position = table.back();
+    else
+      {
+        const auto  &b = *row, &a = *(row - 1);
+        const double s = (time - a[0]) / (b[0] - a[0]);
+        position       = a;
+        for (unsigned int c = 1; c <= dim; ++c)
+          position[c] = (1 - s) * a[c] + s * b[c];
+      }
+    for (unsigned int c = 0; c < dim; ++c)
+      d[c] = position[c + 1] - table.front()[c + 1];
+    return d;
+  }
+
+
+  template <int dim>
+  bool
+  GraspTool<dim>::due(const double time) const
+  {
+    const double eps = 1e-9 * std::max(1., std::abs(time));
+    if (!holding && !released && time >= parameters.grasp_time - eps
+        && time < parameters.release_time - eps)
+      return true;
+    return holding && time >= parameters.release_time - eps;
+  }
+
+
+  template <int dim>
+  void
+  GraspTool<dim>::act(const time::State &state, solid::Solid<dim> &solid)
+  {
+    if (!holding)
+      {
+        grasp_time_actual  = state.time;
+        const auto start   = displacement(state.time);
+        const auto &traj   = *this;
+        solid.hold(
+          vertices,
+          [&traj, start](const double t) { return traj.displacement(t) - start; },
+          state.u);
+        holding = true;
+      }
+    else
+      {
+        solid.release();
+        holding  = false;
+        released = true;
+      }
+  }
+
+
+  template <int dim>
+  void
+  GraspTool<dim>::open(const std::string &directory)
+  {
+    if (!parallel_tools::is_root())
+      return;
+    const char *names[3] = {"x", "y", "z"};
+    force_file.open(directory + "/tool_force.csv");
+    haptic_file.open(directory + "/haptic_force.csv");
+    require(force_file && haptic_file,
+            "Output/Directory",
+            "cannot create tool_force.csv or haptic_force.csv in '"
+              + directory + "'");
+    force_file << "time,holding";
+    for (unsigned int d = 0; d < dim; ++d)
+      force_file << ",tool_" << names[d];
+    for (unsigned int d = 0; d < dim; ++d)
+      force_file << ",force_" << names[d];
+    force_file << '\n';
+    haptic_file << "time";
+    for (unsigned int d = 0; d < dim; ++d)
+      haptic_file << ",force_" << names[d];
+    haptic_file << ",error\n";
+    force_file << std::setprecision(10);
+    haptic_file << std::setprecision(10);
+  }
+
+
+  template <int dim>
+  Tensor<1, dim>
+  GraspTool<dim>::record(const time::State &state, solid::Solid<dim> &solid)
+  {
+    const auto     values = solid.held_force(state.u, state.a, state.time);
+    Tensor<1, dim> force;
+    for (unsigned int d = 0; d < dim; ++d)
+      force[d] = values[d];
+    const Tensor<1, dim> position = displacement(state.time);
+    max_force = std::max(max_force, force.norm());
+
+    // Haptic updates in (t_n, t_{n+1}], extrapolated from data up to t_n.
+    if (last_time)
+      {
+        const double t0 = *last_time, t1 = state.time;
+        const double period = 1. / parameters.haptic_rate;
+        if (next_haptic_time <= t0)
+          next_haptic_time = (std::floor(t0 / period) + 1) * period;
+        for (; next_haptic_time <= t1 * (1 + 1e-12); next_haptic_time += period)
+          {
+            const double tau   = next_haptic_time;
+            const auto   start = std::chrono::steady_clock::now();
+            Tensor<1, dim> estimate = last_force;
+            if (!holding)
+              estimate = 0; // let go: nothing to feel
+            else if (parameters.extrapolation == "time")
+              {
+                if (have_rate)
+                  estimate += rate * (tau - t0);
+              }
+            else
+              estimate += stiffness * (displacement(tau) - last_position);
+            ++haptic_updates;
+            if (seconds_since(start) <= parameters.haptic_budget)
+              ++within_budget;
+            const Tensor<1, dim> reference
+              = last_force + (force - last_force) * ((tau - t0) / (t1 - t0));
+            const double error = (estimate - reference).norm();
+            max_error          = std::max(max_error, error);
+            sum_error += error;
+            if (haptic_file.is_open())
+              {
+                haptic_file << tau;
+                for (unsigned int d = 0; d < dim; ++d)
+                  haptic_file << ',' << estimate[d];
+                haptic_file << ',' << error << '\n';
+              }
+          }
+        if (haptic_file.is_open())
+          haptic_file << std::flush;
+        // Update the rate and the secant stiffness (Broyden), unless the
+        // tool grasped or let go in between (a jump, not a trend).
+        if (holding && held_at_last_record)
+          {
+            rate      = (force - last_force) / (t1 - t0);
+            have_rate = true;
+            const Tensor<1, dim> dx = position - last_position;
+            if (dx.norm_square() > 0)
+              stiffness +=
+                outer_product((force - last_force) - stiffness * dx, dx)
+                / dx.norm_square();
+          }
+        else
+          {
+            rate      = 0;
+            have_rate = false;
+            stiffness = 0;
+          }
+      }
+    held_at_last_record = holding;
+    last_time     = state.time;
+    last_force    = force;
+    last_position = position;
+    if (force_file.is_open())
+      {
+        force_file << state.time << ',' << (holding ? 1 : 0);
+        for (unsigned int d = 0; d < dim; ++d)
+          force_file << ',' << position[d];
+        for (unsigned int d = 0; d < dim; ++d)
+          force_file << ',' << force[d];
+        force_file << std::endl;
+      }
+    return force;
+  }
+
+
+  template <int dim>
+  std::string
+  GraspTool<dim>::summary() const
+  {
+    std::ostringstream s;
+    s << "tool: " << vertices.size() << " vertices held; haptic: "
+      << haptic_updates << " updates at " << parameters.haptic_rate
+      << " per time unit, " << std::setprecision(3)
+      << (haptic_updates ? 100. * within_budget / haptic_updates : 100.)
+      << " % within the budget of " << parameters.haptic_budget
+      << " s; extrapolation error ('" << parameters.extrapolation
+      << "') against the simulated force: mean "
+      << (haptic_updates ? sum_error / haptic_updates : 0.) << ", max "
+      << max_error << " (force units; largest tool force " << max_force
+      << ")";
+    return s.str();
+  }
+
+  template class GraspTool<1>;
+  template class GraspTool<2>;
+  template class GraspTool<3>;
+} // namespace tissuefem::tool
