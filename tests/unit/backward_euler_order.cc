@@ -1,0 +1,101 @@
+// Backward Euler on the single degree of freedom of
+// central_difference_order, with the consistent mass this integrator uses:
+// a 1D bar of one linear element, clamped at x = 0 (E = 1, nu = 0, rho =
+// 1), so that the free node obeys m u'' + k u = 0 with m = 1/3 and k = 1
+// (omega^2 = 3), started from u = 0.01 at rest: u(t) = 0.01 cos(omega t).
+// The errors at t = 1 for steps 0.02, 0.01, 0.005 must decrease with
+// observed order 1 (within 0.2).
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <tissuefem/base/application.h>
+
+#include "../tests.h"
+#include "solid_scene.h"
+
+#include <cmath>
+#include <iostream>
+#include <sstream>
+
+using namespace dealii;
+using namespace tissuefem;
+
+namespace
+{
+  const char *scene = R"(
+    set Dimension = 1
+    subsection Geometry
+      set Lower corner = 0
+      set Upper corner = 1
+      set Subdivisions = 1
+    end
+    subsection Materials
+      set Model = linear elastic
+      set Young's modulus = 1
+      set Poisson's ratio = 0
+      set Density = 1
+    end
+    subsection Boundary conditions
+      set Dirichlet = 0: x: 0
+      set Initial displacement = 0.01*x
+    end
+    subsection Time integration
+      set Integrator = backward Euler
+    end
+  )";
+
+  /// The displacement of the free node at @p end_time.
+  double
+  run(ParameterHandler &prm, const double step, const double end_time)
+  {
+    prm.enter_subsection("Time integration");
+    prm.set("Time step", step);
+    prm.set("End time", end_time);
+    prm.leave_subsection();
+    tissuefem_tests::SolidScene<1> scene(prm);
+    auto                          &solid = *scene.solid;
+    time::Context                  context{solid,
+                          scene.time_parameters,
+                          scene.newton_parameters,
+                          *scene.linear_solver};
+    auto integrator = time::IntegratorRegistry::instance().create(
+      scene.time_parameters.integrator, prm);
+    time::State state;
+    solid.initial_state(state.u, state.v);
+    solid.apply_dirichlet_values(0., state.u);
+    integrator->initialize(context, state);
+    while (state.time < end_time * (1 - 1e-12))
+      integrator->advance(state, end_time);
+    return state.u.linfty_norm();
+  }
+
+  double
+  exact(const double t)
+  {
+    return 0.01 * std::cos(std::sqrt(3.) * t);
+  }
+} // namespace
+
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  ParameterHandler                 prm;
+  declare_all_parameters(prm);
+  prm.parse_input_from_string(scene);
+  std::vector<double> errors;
+  std::ostringstream  discarded;
+  std::streambuf     *screen = std::cout.rdbuf(discarded.rdbuf());
+  for (const double step : {0.02, 0.01, 0.005})
+    errors.push_back(std::abs(run(prm, step, 1.) - std::abs(exact(1.))));
+  std::cout.rdbuf(screen);
+  const double order_1 = std::log2(errors[0] / errors[1]);
+  const double order_2 = std::log2(errors[1] / errors[2]);
+  tissuefem_tests::check(std::abs(order_1 - 1.) < 0.2
+                           && std::abs(order_2 - 1.) < 0.2,
+                         "backward Euler: observed order 1 within 0.2",
+                         "orders " + std::to_string(order_1) + ", "
+                           + std::to_string(order_2));
+}
