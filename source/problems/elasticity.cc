@@ -245,9 +245,9 @@ namespace tissuefem::problems
         {
           TimerOutput::Scope scope(timer, "time steps (integrator)");
           move_tool(state, true);
-          const auto         start = std::chrono::steady_clock::now();
-          report                   = integrator->advance(state, end_time);
-          report.step_seconds      = std::chrono::duration<double>(
+          const auto start    = std::chrono::steady_clock::now();
+          report              = integrator->advance(state, end_time);
+          report.step_seconds = std::chrono::duration<double>(
                                   std::chrono::steady_clock::now() - start)
                                   .count();
         }

@@ -118,8 +118,10 @@ namespace tissuefem::solid
                                                  constraints,
                                                  d.mask);
     if (boundary_conditions && boundary_conditions->held)
-      for (const auto &[dof, vertex, component] : held_vertex_dofs(
-             dof_handler, boundary_conditions->held->vertices, locally_relevant))
+      for (const auto &[dof, vertex, component] :
+           held_vertex_dofs(dof_handler,
+                            boundary_conditions->held->vertices,
+                            locally_relevant))
         if (!constraints.is_constrained(dof))
           constraints.add_line(dof);
     constraints.close();
@@ -136,8 +138,7 @@ namespace tissuefem::solid
                              false);
     for (const auto v : vertices)
       wanted[v] = true;
-    std::vector<
-      std::tuple<types::global_dof_index, unsigned int, unsigned int>>
+    std::vector<std::tuple<types::global_dof_index, unsigned int, unsigned int>>
       result;
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (!cell->is_artificial())

@@ -6,6 +6,7 @@
 #include <tissuefem/base/timing.h>
 #include <tissuefem/time/interface.h>
 #include <tissuefem/time/nodal.h>
+#include <tissuefem/time/radau_linear_systems.h>
 #include <tissuefem/time/stiffness.h>
 
 #include <Epetra_CrsMatrix.h>
@@ -248,7 +249,7 @@ namespace tissuefem::time
       context->solid.initialize_vector(u);
       set_up_vectors(u);
       stiffness->reset();
-      complex_solver.reset();
+      factorized_step  = 0;
       jacobian_current = false;
       have_polynomial  = false;
     }
@@ -295,12 +296,10 @@ namespace tissuefem::time
     bool                      have_polynomial = false;
     double                    last_step       = 0;
 
-    // Newton matrices: K + s M (real), its complex 2n form, and solvers.
-    MatrixType                             real_matrix, complex_matrix;
-    std::unique_ptr<solvers::LinearSolver> complex_solver;
-    IndexSet                               doubled;
-    double                                 factorized_step  = 0;
-    bool                                   jacobian_current = false;
+    // Newton's two linear systems, built for the step factorized_step.
+    std::unique_ptr<RadauLinearSystems> systems;
+    double                              factorized_step  = 0;
+    bool                                jacobian_current = false;
 
     double       h         = 0;
     double       faccon    = 1;
@@ -308,8 +307,7 @@ namespace tissuefem::time
     double       step_sum  = 0;
     unsigned int intervals = 0;
     StepReport   totals;
-    bool         jacobian_fresh   = false; // evaluated at the present state
-    bool         real_refactorize = true, complex_refactorize = true;
+    bool         jacobian_fresh = false; // evaluated at the present state
 
     void
     check_mesh() const
@@ -338,11 +336,15 @@ namespace tissuefem::time
           v.reinit(like, false);
       f0u.reinit(like, false);
       f0v.reinit(like, false);
-      const IndexSet owned = like.locally_owned_elements();
-      const auto     n     = owned.size();
-      doubled              = IndexSet(2 * n);
-      doubled.add_indices(owned);
-      doubled.add_indices(owned, n);
+      if (!systems)
+        systems = std::make_unique<RadauLinearSystems>(damping,
+                                                       gamma_hat,
+                                                       alpha_hat,
+                                                       beta_hat);
+      systems->reinit(*mass,
+                      free,
+                      stiffness->assembled(),
+                      context->linear_solver);
     }
 
     /// f(t, y) for y = (u, v): (v, (f_ext - f_int(u))/m - c v).
@@ -397,22 +399,6 @@ namespace tissuefem::time
       return count > 0 ? std::sqrt(sum / count) : 0.;
     }
 
-    /// Builds K + s M and its complex counterpart for the step h.
-    void
-    factorize(const double step);
-
-    /// Solves ((gamma_hat/h) I - J) x = r, in place on (r_u, r_v).
-    void
-    solve_real(const double step, VectorType &ru, VectorType &rv);
-
-    /// Solves (((alpha_hat + i beta_hat)/h) I - J)(x + iy) = r + is, in
-    /// place on (r_u, r_v) (real parts) and (s_u, s_v) (imaginary).
-    void
-    solve_complex(const double step,
-                  VectorType  &ru,
-                  VectorType  &rv,
-                  VectorType  &su,
-                  VectorType  &sv);
 
     Attempt
     try_step(const State &state, const double step);
@@ -420,190 +406,6 @@ namespace tissuefem::time
     void
     accept(State &state, const double step, StepReport &report);
   };
-  void
-  RadauIIA::factorize(const double step)
-  {
-    const double *m       = local_entries(*mass);
-    const double *is_free = local_entries(free);
-    const auto   &K       = stiffness->matrix().trilinos_matrix();
-    const auto    n       = context->solid.n_dofs();
-
-    // Real: K + s M, s = sigma (sigma + c), sigma = gamma_hat / h.
-    const double sigma = gamma_hat / step;
-    const double s     = sigma * (sigma + damping);
-    real_matrix.copy_from(stiffness->matrix());
-    {
-      auto &R = const_cast<Epetra_CrsMatrix &>(real_matrix.trilinos_matrix());
-      for (int r = 0; r < R.NumMyRows(); ++r)
-        if (is_free[r] > 0)
-          {
-            int     length;
-            double *values;
-            int    *columns;
-            R.ExtractMyRowView(r, length, values, columns);
-            for (int k = 0; k < length; ++k)
-              if (R.ColMap().GID(columns[k]) == R.RowMap().GID(r))
-                values[k] += s * m[r];
-          }
-    }
-    real_refactorize = true;
-
-    // Complex: K + (p + iq) M as [K + pM, -qM; qM, K + pM] on rows i and
-    // i + n.
-    const std::complex<double> sc(alpha_hat / step, beta_hat / step);
-    const std::complex<double> ss = sc * (sc + damping);
-    const double               p = ss.real(), q = ss.imag();
-    const bool                 first = complex_solver == nullptr;
-    if (first)
-      {
-        TrilinosWrappers::SparsityPattern pattern(
-          doubled, doubled, parallel_tools::communicator());
-        for (int r = 0; r < K.NumMyRows(); ++r)
-          {
-            int     length;
-            double *values;
-            int    *columns;
-            K.ExtractMyRowView(r, length, values, columns);
-            const types::global_dof_index        row = K.RowMap().GID(r);
-            std::vector<types::global_dof_index> cols(length), shifted(length);
-            for (int k = 0; k < length; ++k)
-              {
-                cols[k]    = K.ColMap().GID(columns[k]);
-                shifted[k] = cols[k] + n;
-              }
-            cols.push_back(row + n);
-            shifted.push_back(row);
-            pattern.add_entries(row, cols.begin(), cols.end());
-            pattern.add_entries(row + n, shifted.begin(), shifted.end());
-          }
-        pattern.compress();
-        complex_matrix.reinit(pattern);
-        // The 2n system is not symmetric: always a direct solver.
-        solvers::LinearSolverParameters direct;
-        direct.type               = "MUMPS";
-        direct.relative_tolerance = 1e-10;
-        direct.max_iterations     = 1;
-        direct.rebuild_factor     = 1;
-        complex_solver = std::make_unique<solvers::LinearSolver>(direct);
-      }
-    for (int r = 0; r < K.NumMyRows(); ++r)
-      {
-        int     length;
-        double *values;
-        int    *columns;
-        K.ExtractMyRowView(r, length, values, columns);
-        const types::global_dof_index        row = K.RowMap().GID(r);
-        std::vector<types::global_dof_index> cols(length + 1),
-          shifted(length + 1);
-        std::vector<double> entries(length + 1);
-        for (int k = 0; k < length; ++k)
-          {
-            cols[k]    = K.ColMap().GID(columns[k]);
-            shifted[k] = cols[k] + n;
-            entries[k] = values[k];
-            if (cols[k] == row && is_free[r] > 0)
-              entries[k] += p * m[r];
-          }
-        const double coupling = is_free[r] > 0 ? q * m[r] : 0.;
-        cols[length]          = row + n;
-        entries[length]       = -coupling;
-        complex_matrix.set(row, cols.size(), cols.data(), entries.data());
-        shifted[length] = row;
-        entries[length] = coupling;
-        complex_matrix.set(row + n,
-                           shifted.size(),
-                           shifted.data(),
-                           entries.data());
-      }
-    complex_matrix.compress(VectorOperation::insert);
-    complex_refactorize = true;
-  }
-
-
-  void
-  RadauIIA::solve_real(const double step, VectorType &ru, VectorType &rv)
-  {
-    const double       sigma = gamma_hat / step;
-    const double       s     = sigma * (sigma + damping);
-    const double      *m = local_entries(*mass), *is_free = local_entries(free);
-    double            *xu = local_entries(ru), *xv = local_entries(rv);
-    const unsigned int n = local_size(ru);
-    if (!stiffness->assembled())
-      {
-        for (unsigned int i = 0; i < n; ++i)
-          {
-            const double x
-              = is_free[i] * (xv[i] + (sigma + damping) * xu[i]) / s;
-            xv[i] = sigma * x - is_free[i] * xu[i];
-            xu[i] = x;
-          }
-        return;
-      }
-    VectorType b(ru), x(ru);
-    double    *bp = local_entries(b);
-    for (unsigned int i = 0; i < n; ++i)
-      bp[i] = is_free[i] * m[i] * (xv[i] + (sigma + damping) * xu[i]);
-    x = 0.;
-    context->linear_solver.solve(real_matrix, x, b, real_refactorize);
-    real_refactorize = false;
-    const double *xp = local_entries(x);
-    for (unsigned int i = 0; i < n; ++i)
-      {
-        xv[i] = sigma * xp[i] - is_free[i] * xu[i];
-        xu[i] = xp[i];
-      }
-  }
-
-
-  void
-  RadauIIA::solve_complex(const double step,
-                          VectorType  &ru,
-                          VectorType  &rv,
-                          VectorType  &su,
-                          VectorType  &sv)
-  {
-    using C                    = std::complex<double>;
-    const C            sigma   = C(alpha_hat, beta_hat) / step;
-    const C            s       = sigma * (sigma + damping);
-    const double      *m       = local_entries(*mass);
-    const double      *is_free = local_entries(free);
-    double            *pu = local_entries(ru), *pv = local_entries(rv);
-    double            *qu = local_entries(su), *qv = local_entries(sv);
-    const unsigned int n = local_size(ru);
-    std::vector<C>     x(n);
-    if (!stiffness->assembled())
-      for (unsigned int i = 0; i < n; ++i)
-        x[i] = is_free[i]
-               * (C(pv[i], qv[i]) + (sigma + damping) * C(pu[i], qu[i])) / s;
-    else
-      {
-        VectorType b(doubled, parallel_tools::communicator()), y(b);
-        double    *bp = local_entries(b);
-        for (unsigned int i = 0; i < n; ++i)
-          {
-            const C rhs
-              = is_free[i] * m[i]
-                * (C(pv[i], qv[i]) + (sigma + damping) * C(pu[i], qu[i]));
-            bp[i]     = rhs.real();
-            bp[i + n] = rhs.imag();
-          }
-        complex_solver->solve(complex_matrix, y, b, complex_refactorize);
-        complex_refactorize = false;
-        const double *yp    = local_entries(y);
-        for (unsigned int i = 0; i < n; ++i)
-          x[i] = C(yp[i], yp[i + n]);
-      }
-    for (unsigned int i = 0; i < n; ++i)
-      {
-        const C v = sigma * x[i] - is_free[i] * C(pu[i], qu[i]);
-        pu[i]     = x[i].real();
-        qu[i]     = x[i].imag();
-        pv[i]     = v.real();
-        qv[i]     = v.imag();
-      }
-  }
-
-
   RadauIIA::Attempt
   RadauIIA::try_step(const State &state, const double step)
   {
@@ -614,7 +416,7 @@ namespace tissuefem::time
     const double c[3]  = {c1, c2, 1.};
     if (stiffness->assembled() && factorized_step != step)
       {
-        factorize(step);
+        systems->factorize(*stiffness, step);
         factorized_step = step;
       }
 
@@ -718,8 +520,8 @@ namespace tissuefem::time
             ru[i].scale(free);
             rv[i].scale(free);
           }
-        solve_real(step, ru[0], rv[0]);
-        solve_complex(step, ru[1], rv[1], ru[2], rv[2]);
+        systems->solve_real(step, ru[0], rv[0]);
+        systems->solve_complex(step, ru[1], rv[1], ru[2], rv[2]);
 
         const double dyno = scaled_norm({&ru[0], &ru[1], &ru[2]},
                                         {&rv[0], &rv[1], &rv[2]},
@@ -788,7 +590,7 @@ namespace tissuefem::time
     ev.add(dd3 / step, zv[2]);
     eu.scale(free);
     ev.scale(free);
-    solve_real(step, eu, ev);
+    systems->solve_real(step, eu, ev);
     VectorType u1(state.u), v1(state.v);
     u1 += zu[2];
     v1 += zv[2];

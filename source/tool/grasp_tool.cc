@@ -125,8 +125,7 @@ namespace tissuefem::tool
               end = 0;
             }
           if (end != item.size() || !std::isfinite(value))
-            throw InputError(what + ": '" + item
-                             + "' is not a finite number");
+            throw InputError(what + ": '" + item + "' is not a finite number");
           values.push_back(value);
         }
       return values;
@@ -137,7 +136,7 @@ namespace tissuefem::tool
   template <int dim>
   GraspTool<dim>::GraspTool(const ToolParameters     &p,
                             const Triangulation<dim> &mesh)
-    : parameters(p)
+      : parameters(p)
   {
     const auto coordinates
       = numbers(p.grasp_point, "Parameter 'Tool/Grasp point'");
@@ -204,7 +203,8 @@ namespace tissuefem::tool
         trajectory = std::make_unique<FunctionParser<dim>>(dim);
         try
           {
-            trajectory->initialize(FunctionParser<dim>::default_variable_names() + ",t",
+            trajectory->initialize(FunctionParser<dim>::default_variable_names()
+                                     + ",t",
                                    p.trajectory,
                                    {},
                                    true);
@@ -237,7 +237,7 @@ namespace tissuefem::tool
         return d;
       }
     // Linear interpolation in the recorded positions, held at the ends.
-    auto row = std::upper_bound(table.begin(),
+    auto                row = std::upper_bound(table.begin(),
                                 table.end(),
                                 time,
                                 [](const double t, const auto &r) {
@@ -280,12 +280,14 @@ namespace tissuefem::tool
   {
     if (!holding)
       {
-        grasp_time_actual  = state.time;
-        const auto start   = displacement(state.time);
-        const auto &traj   = *this;
+        grasp_time_actual = state.time;
+        const auto  start = displacement(state.time);
+        const auto &traj  = *this;
         solid.hold(
           vertices,
-          [&traj, start](const double t) { return traj.displacement(t) - start; },
+          [&traj, start](const double t) {
+            return traj.displacement(t) - start;
+          },
           state.u);
         holding = true;
       }
@@ -309,8 +311,8 @@ namespace tissuefem::tool
     haptic_file.open(directory + "/haptic_force.csv");
     require(force_file && haptic_file,
             "Output/Directory",
-            "cannot create tool_force.csv or haptic_force.csv in '"
-              + directory + "'");
+            "cannot create tool_force.csv or haptic_force.csv in '" + directory
+              + "'");
     force_file << "time,holding";
     for (unsigned int d = 0; d < dim; ++d)
       force_file << ",tool_" << names[d];
@@ -335,7 +337,7 @@ namespace tissuefem::tool
     for (unsigned int d = 0; d < dim; ++d)
       force[d] = values[d];
     const Tensor<1, dim> position = displacement(state.time);
-    max_force = std::max(max_force, force.norm());
+    max_force                     = std::max(max_force, force.norm());
 
     // Haptic updates in (t_n, t_{n+1}], extrapolated from data up to t_n.
     if (last_time)
@@ -346,8 +348,8 @@ namespace tissuefem::tool
           next_haptic_time = (std::floor(t0 / period) + 1) * period;
         for (; next_haptic_time <= t1 * (1 + 1e-12); next_haptic_time += period)
           {
-            const double tau   = next_haptic_time;
-            const auto   start = std::chrono::steady_clock::now();
+            const double   tau      = next_haptic_time;
+            const auto     start    = std::chrono::steady_clock::now();
             Tensor<1, dim> estimate = last_force;
             if (!holding)
               estimate = 0; // let go: nothing to feel
@@ -380,13 +382,13 @@ namespace tissuefem::tool
         // tool grasped or let go in between (a jump, not a trend).
         if (holding && held_at_last_record)
           {
-            rate      = (force - last_force) / (t1 - t0);
-            have_rate = true;
+            rate                    = (force - last_force) / (t1 - t0);
+            have_rate               = true;
             const Tensor<1, dim> dx = position - last_position;
             if (dx.norm_square() > 0)
-              stiffness +=
-                outer_product((force - last_force) - stiffness * dx, dx)
-                / dx.norm_square();
+              stiffness
+                += outer_product((force - last_force) - stiffness * dx, dx)
+                   / dx.norm_square();
           }
         else
           {
@@ -396,9 +398,9 @@ namespace tissuefem::tool
           }
       }
     held_at_last_record = holding;
-    last_time     = state.time;
-    last_force    = force;
-    last_position = position;
+    last_time           = state.time;
+    last_force          = force;
+    last_position       = position;
     if (force_file.is_open())
       {
         force_file << state.time << ',' << (holding ? 1 : 0);
@@ -417,16 +419,15 @@ namespace tissuefem::tool
   GraspTool<dim>::summary() const
   {
     std::ostringstream s;
-    s << "tool: " << vertices.size() << " vertices held; haptic: "
-      << haptic_updates << " updates at " << parameters.haptic_rate
-      << " per time unit, " << std::setprecision(3)
+    s << "tool: " << vertices.size()
+      << " vertices held; haptic: " << haptic_updates << " updates at "
+      << parameters.haptic_rate << " per time unit, " << std::setprecision(3)
       << (haptic_updates ? 100. * within_budget / haptic_updates : 100.)
       << " % within the budget of " << parameters.haptic_budget
       << " s; extrapolation error ('" << parameters.extrapolation
       << "') against the simulated force: mean "
       << (haptic_updates ? sum_error / haptic_updates : 0.) << ", max "
-      << max_error << " (force units; largest tool force " << max_force
-      << ")";
+      << max_error << " (force units; largest tool force " << max_force << ")";
     return s.str();
   }
 

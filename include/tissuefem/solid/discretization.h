@@ -5,12 +5,12 @@
 #include <deal.II/base/quadrature.h>
 #include <deal.II/dofs/dof_handler.h>
 
-#include <tuple>
-#include <vector>
 #include <deal.II/fe/fe.h>
 #include <deal.II/fe/mapping.h>
 #include <deal.II/grid/tria.h>
 #include <deal.II/lac/affine_constraints.h>
+#include <tuple>
+#include <vector>
 
 #include <tissuefem/base/parallel.h>
 #include <tissuefem/boundary/boundary_conditions.h>

@@ -216,11 +216,11 @@ namespace tissuefem::solid
 
     /// M a + f_int(u) - f_ext(t) on every row, without constraints.
     void
-    unconstrained_residual(const VectorType &u,
-                           const VectorType &acceleration,
-                           const double      time,
-                           VectorType       &residual);
-    bool                                              body_force_present;
+         unconstrained_residual(const VectorType &u,
+                                const VectorType &acceleration,
+                                const double      time,
+                                VectorType       &residual);
+    bool body_force_present;
     /// Ghosted copies of the arguments, reused between calls.
     VectorType ghosted_u, ghosted_w;
 

@@ -84,24 +84,23 @@ namespace tissuefem::tool
     displacement(const double time) const;
 
   private:
-    ToolParameters              parameters;
-    Point<dim>                  grasp_point;
-    std::vector<unsigned int>   vertices;
+    ToolParameters                       parameters;
+    Point<dim>                           grasp_point;
+    std::vector<unsigned int>            vertices;
     std::unique_ptr<FunctionParser<dim>> trajectory;
     std::vector<std::vector<double>>     table; // t, x, y[, z]
-    bool                        holding = false, released = false;
-    double                      grasp_time_actual = 0;
+    bool                                 holding = false, released = false;
+    double                               grasp_time_actual = 0;
 
     std::ofstream force_file, haptic_file;
 
     // Force history for extrapolation.
-    std::optional<double>       last_time;
-    Tensor<1, dim>              last_force, last_position, rate;
-    Tensor<2, dim>              stiffness;
-    bool                        have_rate = false, held_at_last_record = false;
-    double                      next_haptic_time = 0;
-    unsigned int                haptic_updates = 0, within_budget = 0;
-    double                      max_error = 0, sum_error = 0,
-           max_force = 0;
+    std::optional<double> last_time;
+    Tensor<1, dim>        last_force, last_position, rate;
+    Tensor<2, dim>        stiffness;
+    bool                  have_rate = false, held_at_last_record = false;
+    double                next_haptic_time = 0;
+    unsigned int          haptic_updates = 0, within_budget = 0;
+    double                max_error = 0, sum_error = 0, max_force = 0;
   };
 } // namespace tissuefem::tool
