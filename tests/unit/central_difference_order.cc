@@ -47,31 +47,6 @@ namespace
     end
   )";
 
-  /// The displacement of the free node at @p end_time.
-  double
-  run(ParameterHandler &prm, const double step, const double end_time)
-  {
-    prm.enter_subsection("Time integration");
-    prm.set("Time step", step);
-    prm.set("End time", end_time);
-    prm.leave_subsection();
-    tissuefem_tests::SolidScene<1> scene(prm);
-    auto                          &solid = *scene.solid;
-    time::Context                  context{solid,
-                          scene.time_parameters,
-                          scene.newton_parameters,
-                          *scene.linear_solver};
-    auto integrator = time::IntegratorRegistry::instance().create(
-      scene.time_parameters.integrator, prm);
-    time::State state;
-    solid.initial_state(state.u, state.v);
-    solid.apply_dirichlet_values(0., state.u);
-    integrator->initialize(context, state);
-    while (state.time < end_time * (1 - 1e-12))
-      integrator->advance(state, end_time);
-    return state.u.linfty_norm();
-  }
-
   double
   exact(const double c, const double t)
   {
@@ -104,8 +79,9 @@ main(int argc, char **argv)
         std::ostringstream discarded;
         std::streambuf    *screen = std::cout.rdbuf(discarded.rdbuf());
         for (const double step : {0.05, 0.025, 0.0125})
-          errors.push_back(std::abs(std::abs(run(prm, step, end_time))
-                                    - std::abs(exact(c, end_time))));
+          errors.push_back(std::abs(
+            std::abs(tissuefem_tests::run_to_end<1>(prm, step, end_time))
+            - std::abs(exact(c, end_time))));
         std::cout.rdbuf(screen);
         const double      order_1 = std::log2(errors[0] / errors[1]);
         const double      order_2 = std::log2(errors[1] / errors[2]);

@@ -64,4 +64,34 @@ namespace tissuefem_tests
     solvers::NewtonParameters                          newton_parameters;
     std::unique_ptr<solvers::LinearSolver>             linear_solver;
   };
+
+
+  /// Builds the scene of @p prm with 'Time step' @p step and 'End time'
+  /// @p end_time, runs its integrator from the initial state to the end and
+  /// returns the largest |u| (the single free node's displacement in the
+  /// order tests).
+  template <int dim>
+  double
+  run_to_end(ParameterHandler &prm, const double step, const double end_time)
+  {
+    prm.enter_subsection("Time integration");
+    prm.set("Time step", step);
+    prm.set("End time", end_time);
+    prm.leave_subsection();
+    SolidScene<dim> scene(prm);
+    auto           &solid = *scene.solid;
+    time::Context   context{solid,
+                          scene.time_parameters,
+                          scene.newton_parameters,
+                          *scene.linear_solver};
+    auto            integrator = time::IntegratorRegistry::instance().create(
+      scene.time_parameters.integrator, prm);
+    time::State state;
+    solid.initial_state(state.u, state.v);
+    solid.apply_dirichlet_values(0., state.u);
+    integrator->initialize(context, state);
+    while (state.time < end_time * (1 - 1e-12))
+      integrator->advance(state, end_time);
+    return state.u.linfty_norm();
+  }
 } // namespace tissuefem_tests
