@@ -509,8 +509,11 @@ namespace tissuefem::solid
         rows.distribute_local_to_global(copy.rhs, copy.dofs, residual);
     };
 
-    std::vector<unsigned int> indices(cache.cells().size());
-    std::iota(indices.begin(), indices.end(), 0u);
+    std::vector<unsigned int> indices;
+    indices.reserve(cache.cells().size());
+    for (unsigned int c = 0; c < cache.cells().size(); ++c)
+      if (!request.cells || (*request.cells)[c])
+        indices.push_back(c);
     WorkStream::run(indices.cbegin(),
                     indices.cend(),
                     worker,
@@ -663,6 +666,40 @@ namespace tissuefem::solid
     request.external = false;
     request.rows     = &no_constraints;
     assemble(request, force);
+  }
+
+
+  template <int dim>
+  void
+  Solid<dim>::internal_force_on(const VectorType        &u,
+                                const std::vector<bool> &active_cells,
+                                VectorType              &force)
+  {
+    AssertDimension(active_cells.size(), cache.cells().size());
+    make_ghosted(u, ghosted_u);
+    Request request;
+    request.u        = &ghosted_u;
+    request.external = false;
+    request.rows     = &no_constraints;
+    request.cells    = &active_cells;
+    assemble(request, force);
+  }
+
+
+  template <int dim>
+  std::vector<bool>
+  Solid<dim>::cells_touching(const VectorType &mask)
+  {
+    make_ghosted(mask, ghosted_w);
+    std::vector<bool> active(cache.cells().size(), false);
+    for (unsigned int c = 0; c < active.size(); ++c)
+      for (unsigned int i = 0; i < cache.n_dofs; ++i)
+        if (ghosted_w[cache.dofs(c)[i]] != 0)
+          {
+            active[c] = true;
+            break;
+          }
+    return active;
   }
 
 

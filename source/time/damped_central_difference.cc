@@ -4,7 +4,9 @@
 #include <tissuefem/time/interface.h>
 #include <tissuefem/time/nodal.h>
 
+#include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <iomanip>
 
 namespace tissuefem::time
@@ -42,8 +44,13 @@ namespace tissuefem::time
       p.enter_subsection("Damped central difference");
       damping        = p.get_double("Damping ratio");
       allow_unstable = p.get_bool("Allow unstable step");
+      threshold      = p.get_double("Active region threshold");
       p.leave_subsection();
       p.leave_subsection();
+      require(std::isfinite(threshold) && threshold >= 0,
+              "Time integration/Damped central difference/Active region "
+              "threshold",
+              "must be >= 0 (force units; 0 propagates every node)");
       require(std::isfinite(damping) && damping >= 0,
               "Time integration/Damped central difference/Damping ratio",
               "must be >= 0");
@@ -59,6 +66,16 @@ namespace tissuefem::time
                         "Mass-proportional damping gamma/m (1/s if SI): the "
                         "damping force on node i is -gamma_i v_i with "
                         "gamma_i = ratio * m_i (Jeffrey eq 10).");
+      prm.declare_entry("Active region threshold",
+                        "0",
+                        Patterns::Double(0),
+                        "Jeffrey's node freezing (report section 3): a node "
+                        "whose net force magnitude (force units) fell below "
+                        "this in the last step is not propagated, and "
+                        "cells all of whose nodes are frozen are not "
+                        "evaluated; nodes whose prescribed displacement "
+                        "moves are always propagated. 0: every node, "
+                        "every step (exact scheme).");
       prm.declare_entry("Allow unstable step",
                         "false",
                         Patterns::Bool(),
@@ -73,7 +90,9 @@ namespace tissuefem::time
     {
       context     = &c;
       auto &solid = c.solid;
-      mass        = &solid.lumped_mass();
+      check_mesh();
+      mass = &solid.lumped_mass();
+      set_up_active_region();
       for (unsigned int i = 0; i < local_size(state.u); ++i)
         if (!(local_entries(*mass)[i] > 0))
           throw InputError("Parameter 'Time integration/Integrator': the "
@@ -116,7 +135,18 @@ namespace tissuefem::time
 
       const auto start = std::chrono::steady_clock::now();
       VectorType force;
-      net_force(state.u, state.time, force);
+      if (threshold > 0)
+        {
+          const auto cells = solid.cells_touching(active);
+          VectorType external;
+          solid.internal_force_on(state.u, cells, force);
+          solid.external_force(state.time, external);
+          force.sadd(-1., 1., external);
+          cells_evaluated +=
+            std::count(cells.begin(), cells.end(), true) / double(cells.size());
+        }
+      else
+        net_force(state.u, state.time, force);
       report.assembly_seconds = seconds_since(start);
 
       VectorType    next(state.u);
@@ -132,6 +162,8 @@ namespace tissuefem::time
                 - eta * (2. - c * eta * dt) * um[i])
                / denominator;
       solid.apply_dirichlet_values(state.time + h, next);
+      if (threshold > 0)
+        update_active_region(state.u, force, next);
 
       // The acceleration at t (F/m - c v), v at t from appendix A.
       VectorType a(force);
@@ -200,7 +232,23 @@ namespace tissuefem::time
     void
     mesh_changed() override
     {
+      check_mesh();
       mass = &context->solid.lumped_mass();
+      set_up_active_region();
+    }
+
+    std::string
+    summary() const override
+    {
+      if (threshold == 0 || steps == 0)
+        return {};
+      std::ostringstream s;
+      s << std::setprecision(3) << "active region: on average "
+        << 100. * nodes_propagated / steps << " % of the degrees of freedom "
+        << "propagated and " << 100. * cells_evaluated / steps
+        << " % of this process's cells evaluated per step (threshold "
+        << threshold << " force units)";
+      return s.str();
     }
 
   private:
@@ -213,6 +261,73 @@ namespace tissuefem::time
     double            critical_step = 0;
     double            omega_max     = 0;
     double            energy        = 0;
+    // Active region: 1 on dofs propagated in the next step, 0 on frozen
+    // ones; free = 1 on unconstrained dofs.
+    double       threshold = 0;
+    VectorType   active, free;
+    double       nodes_propagated = 0, cells_evaluated = 0;
+    unsigned int steps            = 0;
+
+    void
+    check_mesh() const
+    {
+      if (context->solid.has_hanging_nodes())
+        throw InputError("Parameter 'Time integration/Integrator': the "
+                         "damped central difference uses lumped masses, "
+                         "which are not condensed at hanging nodes; use it "
+                         "without mesh refinement");
+    }
+
+    void
+    set_up_active_region()
+    {
+      context->solid.initialize_vector(active);
+      active = 1.;
+      free   = active;
+      context->solid.zero_constrained_entries(free);
+    }
+
+    /**
+     * Freezes the free nodes of @p next whose net force @p force is below
+     * the threshold (they keep @p u) and marks what the next step
+     * propagates: nodes with a force above it and nodes whose prescribed
+     * displacement moved. Dofs come in blocks of dim per node.
+     */
+    void
+    update_active_region(const VectorType &u,
+                         const VectorType &force,
+                         VectorType       &next)
+    {
+      double       *x  = local_entries(next);
+      double       *on = local_entries(active);
+      const double *up = local_entries(u), *f = local_entries(force),
+                   *is_free = local_entries(free);
+      const unsigned int n = local_size(next);
+      const unsigned int d = context->solid.n_components();
+      double             propagated = 0;
+      for (unsigned int i = 0; i < n; ++i)
+        if (is_free[i] > 0 && on[i] == 0)
+          x[i] = up[i];
+      for (unsigned int node = 0; node + d <= n; node += d)
+        {
+          double norm = 0;
+          bool   moved = false;
+          for (unsigned int k = node; k < node + d; ++k)
+            {
+              norm += f[k] * f[k];
+              moved = moved || (is_free[k] == 0 && x[k] != up[k]);
+            }
+          const double flag =
+            (std::sqrt(norm) >= threshold || moved) ? 1. : 0.;
+          for (unsigned int k = node; k < node + d; ++k)
+            on[k] = flag;
+          propagated += flag * d;
+        }
+      nodes_propagated +=
+        Utilities::MPI::sum(propagated, parallel_tools::communicator())
+        / context->solid.n_dofs();
+      ++steps;
+    }
 
     /// F = f_ext(t) - f_int(u), the force driving the nodes.
     void

@@ -48,46 +48,63 @@ namespace tissuefem::time
   }
 
 
+  std::string
+  ImplicitOneStep::attempt(const State &state,
+                           const double h,
+                           State       &next,
+                           StepReport  &report)
+  {
+    auto        &solid = context->solid;
+    const double c     = mass_coefficient(h);
+    const double t_new = state.time + h;
+    if (next.u.size() != state.u.size())
+      solid.initialize_vector(next.u);
+    predict(state, h, u_tilde, next.u);
+    if (context->newton.lift_boundary_increments)
+      lift_boundary_increment(c, t_new, next.u, report);
+    solid.apply_dirichlet_values(t_new, next.u);
+    const solvers::NewtonResult result = solvers::solve_newton(
+      context->newton,
+      next.u,
+      [&](const VectorType &x, VectorType &r, bool jacobian) {
+        solid.implicit_residual(x, u_tilde, c, t_new, r, jacobian);
+      },
+      [&](VectorType &x, const VectorType &b) {
+        context->linear_solver.solve(solid.jacobian(), x, b);
+      });
+    report.newton_iterations += result.iterations;
+    report.assembly_seconds += result.assembly_seconds;
+    report.solve_seconds += result.solve_seconds;
+    if (!result.converged)
+      return result.failure.empty() ? std::string("no convergence")
+                                    : result.failure;
+    report.residual_norm = result.residual_norms.back();
+    next.time            = t_new;
+    // Newton leaves constrained entries alone; set hanging nodes (and the
+    // prescribed values, unchanged) in the state.
+    solid.apply_dirichlet_values(t_new, next.u);
+    finish(state, u_tilde, h, next);
+    return {};
+  }
+
+
   StepReport
   ImplicitOneStep::advance(State &state, const double end_time)
   {
-    auto      &solid         = context->solid;
     auto      &linear_solver = context->linear_solver;
     StepReport report;
     double     h = std::min(step_size, end_time - state.time);
     State      next;
-    next.time = state.time;
-    solid.initialize_vector(next.u);
     const unsigned int linear_before = linear_solver.statistics().iterations;
     for (unsigned int halvings = 0;; ++halvings)
       {
-        const double c = mass_coefficient(h);
-        predict(state, h, u_tilde, next.u);
-        const double t_new = state.time + h;
-        if (context->newton.lift_boundary_increments)
-          lift_boundary_increment(c, t_new, next.u, report);
-        solid.apply_dirichlet_values(t_new, next.u);
-        const solvers::NewtonResult result = solvers::solve_newton(
-          context->newton,
-          next.u,
-          [&](const VectorType &x, VectorType &r, bool jacobian) {
-            solid.implicit_residual(x, u_tilde, c, t_new, r, jacobian);
-          },
-          [&](VectorType &x, const VectorType &b) {
-            linear_solver.solve(solid.jacobian(), x, b);
-          });
-        report.newton_iterations += result.iterations;
-        report.assembly_seconds += result.assembly_seconds;
-        report.solve_seconds += result.solve_seconds;
-        if (result.converged)
-          {
-            report.residual_norm = result.residual_norms.back();
-            break;
-          }
+        const std::string failure = attempt(state, h, next, report);
+        if (failure.empty())
+          break;
         ++report.rejected_attempts;
         std::ostringstream message;
-        message << "Newton failed at t = " << t_new << " with dt = " << h
-                << ": " << result.failure;
+        message << "Newton failed at t = " << state.time + h
+                << " with dt = " << h << ": " << failure;
         if (halvings == context->time.max_step_halvings)
           throw SolverError(message.str() + "; gave up after "
                             + std::to_string(halvings)
@@ -102,11 +119,6 @@ namespace tissuefem::time
     // they are what the step cost.
     report.linear_iterations
       = linear_solver.statistics().iterations - linear_before;
-    next.time = state.time + h;
-    // Newton leaves constrained entries alone; set hanging nodes (and the
-    // prescribed values, unchanged) in the state.
-    solid.apply_dirichlet_values(next.time, next.u);
-    finish(state, u_tilde, h, next);
     state.time = next.time;
     state.u.swap(next.u);
     state.v.swap(next.v);

@@ -4,6 +4,7 @@
 #include <tissuefem/base/input_error.h>
 #include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/base/timing.h>
+#include <tissuefem/time/error_norm.h>
 #include <tissuefem/time/interface.h>
 #include <tissuefem/time/nodal.h>
 #include <tissuefem/time/radau_linear_systems.h>
@@ -96,9 +97,7 @@ namespace tissuefem::time
       p.enter_subsection("Radau IIA");
       damping       = p.get_double("Damping ratio");
       jacobian_kind = p.get("Jacobian");
-      rtol          = p.get_double("Relative tolerance");
-      atol_u        = p.get_double("Absolute tolerance");
-      atol_v        = p.get_double("Absolute velocity tolerance");
+      tolerances.parse_parameters(p, "Time integration/Radau IIA/");
       adaptive      = p.get_bool("Adaptive step");
       max_newton    = p.get_integer("Maximum Newton iterations");
       p.leave_subsection();
@@ -107,15 +106,6 @@ namespace tissuefem::time
       require(std::isfinite(damping) && damping >= 0,
               section + "Damping ratio",
               "must be >= 0");
-      require(std::isfinite(rtol) && rtol > 0 && rtol < 1,
-              section + "Relative tolerance",
-              "must lie in (0, 1)");
-      require(std::isfinite(atol_u) && atol_u > 0,
-              section + "Absolute tolerance",
-              "must be > 0");
-      require(std::isfinite(atol_v) && atol_v > 0,
-              section + "Absolute velocity tolerance",
-              "must be > 0");
       stiffness = std::make_unique<Stiffness>(jacobian_kind);
     }
 
@@ -136,20 +126,7 @@ namespace tissuefem::time
                         "differentiated tangent; numerical = forward "
                         "differences of the internal force; simplified = "
                         "none (mass and damping only, never assembled).");
-      prm.declare_entry("Relative tolerance",
-                        "1e-4",
-                        Patterns::Double(0),
-                        "Local error tolerance relative to |u|, |v|.");
-      prm.declare_entry("Absolute tolerance",
-                        "1e-6",
-                        Patterns::Double(0),
-                        "Local error tolerance for displacements (length "
-                        "units).");
-      prm.declare_entry("Absolute velocity tolerance",
-                        "1e-4",
-                        Patterns::Double(0),
-                        "Local error tolerance for velocities (length per "
-                        "time unit).");
+      ErrorTolerances::declare_parameters(prm);
       prm.declare_entry("Adaptive step",
                         "true",
                         Patterns::Bool(),
@@ -279,7 +256,8 @@ namespace tissuefem::time
     };
 
     // Parameters.
-    double       damping = 0, rtol = 0, atol_u = 0, atol_v = 0;
+    double       damping = 0;
+    ErrorTolerances tolerances;
     std::string  jacobian_kind;
     bool         adaptive   = true;
     unsigned int max_newton = 7;
@@ -366,8 +344,7 @@ namespace tissuefem::time
       du = v;
     }
 
-    /// The RMS norm over free entries of (x_u, x_v) scaled by atol + rtol
-    /// |y|, y the larger of two states.
+    /// The tolerances' weighted RMS norm over the free entries.
     double
     scaled_norm(const std::vector<const VectorType *> &xu,
                 const std::vector<const VectorType *> &xv,
@@ -375,28 +352,7 @@ namespace tissuefem::time
                 const VectorType                      *u1 = nullptr,
                 const VectorType                      *v1 = nullptr) const
     {
-      const double *is_free = local_entries(free);
-      const double *u0 = local_entries(y0.u), *v0 = local_entries(y0.v);
-      double        sum = 0, count = 0;
-      for (unsigned int i = 0; i < local_size(free); ++i)
-        if (is_free[i] > 0)
-          {
-            double su = std::abs(u0[i]), sv = std::abs(v0[i]);
-            if (u1)
-              su = std::max(su, std::abs(local_entries(*u1)[i]));
-            if (v1)
-              sv = std::max(sv, std::abs(local_entries(*v1)[i]));
-            su = atol_u + rtol * su;
-            sv = atol_v + rtol * sv;
-            for (const auto *x : xu)
-              sum += std::pow(local_entries(*x)[i] / su, 2);
-            for (const auto *x : xv)
-              sum += std::pow(local_entries(*x)[i] / sv, 2);
-            count += xu.size() + xv.size();
-          }
-      sum   = Utilities::MPI::sum(sum, parallel_tools::communicator());
-      count = Utilities::MPI::sum(count, parallel_tools::communicator());
-      return count > 0 ? std::sqrt(sum / count) : 0.;
+      return tolerances.norm(xu, xv, free, y0.u, y0.v, u1, v1);
     }
 
 
@@ -472,7 +428,8 @@ namespace tissuefem::time
       }
 
     const double fnewt
-      = std::max(10. * eps / rtol, std::min(0.03, std::sqrt(rtol)));
+      = std::max(10. * eps / tolerances.relative,
+                   std::min(0.03, std::sqrt(tolerances.relative)));
     faccon                           = std::pow(std::max(faccon, eps), 0.8);
     theta                            = 1;
     double                    dynold = 0, thqold = 0;

@@ -44,7 +44,9 @@ namespace tissuefem::time
 
 
   void
-  RadauLinearSystems::factorize(const Stiffness &stiffness, const double step)
+  RadauLinearSystems::factorize(const Stiffness &stiffness,
+                                const double     step,
+                                const bool       with_complex)
   {
     const double *m       = local_entries(*mass);
     const double *is_free = local_entries(*free);
@@ -70,6 +72,8 @@ namespace tissuefem::time
           }
     }
     real_refactorize = true;
+    if (!with_complex)
+      return;
 
     // Complex: K + (p + iq) M as [K + pM, -qM; qM, K + pM] on rows i and
     // i + n.

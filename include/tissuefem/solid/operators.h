@@ -39,6 +39,10 @@ namespace tissuefem::solid
 
     virtual types::global_dof_index
     n_dofs() const = 0;
+    /// Displacement components per node (the space dimension); a node's
+    /// degrees of freedom are consecutive.
+    virtual unsigned int
+    n_components() const = 0;
 
     /// The diameter of the reference body (length units): a scale against
     /// which integrators judge displacements.
@@ -102,6 +106,21 @@ namespace tissuefem::solid
     virtual void
     internal_force(const VectorType &u, VectorType &force)
       = 0;
+    /**
+     * f_int(u) from the cells flagged in @p active_cells only (indexed as
+     * cells_touching() returns them): the others contribute nothing. For
+     * active regions (Jeffrey's node freezing), where the skipped cells are
+     * those whose nodes all stay put.
+     */
+    virtual void
+    internal_force_on(const VectorType        &u,
+                      const std::vector<bool> &active_cells,
+                      VectorType              &force)
+      = 0;
+    /// Flags, per cell of this process's share, whether any of its degrees
+    /// of freedom has a non-zero entry in @p mask.
+    virtual std::vector<bool>
+    cells_touching(const VectorType &mask) = 0;
 
     /// f_ext(t) (rows of constrained degrees of freedom included).
     virtual void

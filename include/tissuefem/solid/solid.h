@@ -51,6 +51,12 @@ namespace tissuefem::solid
     void
     initialize_vector(VectorType &v) const override;
 
+    unsigned int
+    n_components() const override
+    {
+      return dim;
+    }
+
     types::global_dof_index
     n_dofs() const override
     {
@@ -92,6 +98,14 @@ namespace tissuefem::solid
 
     void
     internal_force(const VectorType &u, VectorType &force) override;
+
+    void
+    internal_force_on(const VectorType        &u,
+                      const std::vector<bool> &active_cells,
+                      VectorType              &force) override;
+
+    std::vector<bool>
+    cells_touching(const VectorType &mask) override;
 
     void
     external_force(const double time, VectorType &force) override;
@@ -173,6 +187,8 @@ namespace tissuefem::solid
       const AffineConstraints<double> *rows                      = nullptr;
       /// Whether the inhomogeneities of @p rows enter the residual.
       bool inhomogeneous = false;
+      /// Cells to assemble (all if null), by cache index.
+      const std::vector<bool> *cells = nullptr;
     };
 
     /// The prescribed displacement of every Dirichlet dof at @p time.

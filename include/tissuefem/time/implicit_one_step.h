@@ -49,6 +49,15 @@ namespace tissuefem::time
 
     Context *context = nullptr;
 
+    /**
+     * One attempt at the step from @p state to t + @p h: predictor,
+     * boundary lifting, Newton. On success @p next holds u, v, a at t + h
+     * (constrained entries set) and the result is empty; otherwise it is
+     * Newton's reason for failing. Iterations and times go into @p report.
+     */
+    std::string
+    attempt(const State &state, const double h, State &next, StepReport &report);
+
     /// One Newton iteration from the guess @p u with the change of the
     /// prescribed values as inhomogeneous constraints of the update
     /// (Operators::implicit_residual_lifting); leaves @p u unchanged if the

@@ -38,9 +38,13 @@ namespace tissuefem::time
            const bool             assembled,
            solvers::LinearSolver &real_solver);
 
-    /// Builds both matrices for the step h from K.
+    /// Builds the matrices for the step h from K: both, or the real one
+    /// alone when @p with_complex is false (for a method that has only
+    /// the real system, as a DIRK stage).
     void
-    factorize(const Stiffness &stiffness, const double step);
+    factorize(const Stiffness &stiffness,
+              const double     step,
+              const bool       with_complex = true);
 
     /// In place on (r_u, r_v).
     void
