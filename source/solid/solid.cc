@@ -691,10 +691,11 @@ namespace tissuefem::solid
   Solid<dim>::cells_touching(const VectorType &mask)
   {
     make_ghosted(mask, ghosted_w);
+    const double     *values = ghosted_w.trilinos_vector()[0];
     std::vector<bool> active(cache.cells().size(), false);
     for (unsigned int c = 0; c < active.size(); ++c)
       for (unsigned int i = 0; i < cache.n_dofs; ++i)
-        if (ghosted_w[cache.dofs(c)[i]] != 0)
+        if (values[access.ghost_index[c * cache.n_dofs + i]] != 0)
           {
             active[c] = true;
             break;
@@ -707,6 +708,13 @@ namespace tissuefem::solid
   void
   Solid<dim>::external_force(const double time, VectorType &force)
   {
+    // Most surgical scenes have no load but the tool: skip the pass.
+    if (!body_force_present && boundary_conditions.neumann.empty()
+        && boundary_conditions.gravity.norm() == 0)
+      {
+        initialize_vector(force);
+        return;
+      }
     Request request;
     request.internal = false;
     request.time     = time;

@@ -70,9 +70,10 @@ namespace tissuefem::time
                         "0",
                         Patterns::Double(0),
                         "Jeffrey's node freezing (report section 3): a node "
-                        "whose net force magnitude (force units) fell below "
-                        "this in the last step is not propagated, and "
-                        "cells all of whose nodes are frozen are not "
+                        "whose motion in a step is that of a force below "
+                        "this (force units; m |u+ - u| / dt^2, net force "
+                        "and inertia together) is not propagated, and cells "
+                        "none of whose nodes moved in the last step are not "
                         "evaluated; nodes whose prescribed displacement "
                         "moves are always propagated. 0: every node, "
                         "every step (exact scheme).");
@@ -163,7 +164,7 @@ namespace tissuefem::time
                / denominator;
       solid.apply_dirichlet_values(state.time + h, next);
       if (threshold > 0)
-        update_active_region(state.u, force, next);
+        update_active_region(state.u, h, next);
 
       // The acceleration at t (F/m - c v), v at t from appendix A.
       VectorType a(force);
@@ -288,40 +289,45 @@ namespace tissuefem::time
     }
 
     /**
-     * Freezes the free nodes of @p next whose net force @p force is below
-     * the threshold (they keep @p u) and marks what the next step
-     * propagates: nodes with a force above it and nodes whose prescribed
-     * displacement moved. Dofs come in blocks of dim per node.
+     * Freezes the free nodes whose proposed motion in this step is that of
+     * a force below the threshold: a node keeps u (in @p next) when
+     * |m (u+ - u)| / h^2, the force that would move it from rest by u+ - u
+     * in one step (net force and inertia together, so that a node passing
+     * through equilibrium at speed keeps moving), is below the threshold.
+     * Nodes whose prescribed displacement moves are always propagated.
+     * The cells of the next step's force evaluation are those touching a
+     * propagated node (cells_touching(active)); a frozen node next to them
+     * gets its force from them and wakes when it exceeds the threshold.
+     * Dofs come in blocks of dim per node.
      */
     void
-    update_active_region(const VectorType &u,
-                         const VectorType &force,
-                         VectorType       &next)
+    update_active_region(const VectorType &u, const double h, VectorType &next)
     {
       double       *x  = local_entries(next);
       double       *on = local_entries(active);
-      const double *up = local_entries(u), *f = local_entries(force),
+      const double *up = local_entries(u), *m = local_entries(*mass),
                    *is_free = local_entries(free);
       const unsigned int n = local_size(next);
       const unsigned int d = context->solid.n_components();
       double             propagated = 0;
-      for (unsigned int i = 0; i < n; ++i)
-        if (is_free[i] > 0 && on[i] == 0)
-          x[i] = up[i];
       for (unsigned int node = 0; node + d <= n; node += d)
         {
-          double norm = 0;
-          bool   moved = false;
+          double effective = 0;
+          bool   moved     = false;
           for (unsigned int k = node; k < node + d; ++k)
             {
-              norm += f[k] * f[k];
+              effective += std::pow(m[k] * (x[k] - up[k]), 2);
               moved = moved || (is_free[k] == 0 && x[k] != up[k]);
             }
-          const double flag =
-            (std::sqrt(norm) >= threshold || moved) ? 1. : 0.;
+          const bool propagate
+            = moved || std::sqrt(effective) >= threshold * h * h;
           for (unsigned int k = node; k < node + d; ++k)
-            on[k] = flag;
-          propagated += flag * d;
+            {
+              on[k] = propagate ? 1. : 0.;
+              if (!propagate && is_free[k] > 0)
+                x[k] = up[k];
+            }
+          propagated += propagate ? d : 0;
         }
       nodes_propagated +=
         Utilities::MPI::sum(propagated, parallel_tools::communicator())

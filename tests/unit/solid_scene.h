@@ -69,10 +69,15 @@ namespace tissuefem_tests
   /// Builds the scene of @p prm with 'Time step' @p step and 'End time'
   /// @p end_time, runs its integrator from the initial state to the end and
   /// returns the largest |u| (the single free node's displacement in the
-  /// order tests).
+  /// order tests); the final displacement and the integrator's summary()
+  /// go to @p final_u and @p summary if given.
   template <int dim>
   double
-  run_to_end(ParameterHandler &prm, const double step, const double end_time)
+  run_to_end(ParameterHandler &prm,
+             const double      step,
+             const double      end_time,
+             Vector<double>   *final_u = nullptr,
+             std::string      *summary = nullptr)
   {
     prm.enter_subsection("Time integration");
     prm.set("Time step", step);
@@ -92,6 +97,10 @@ namespace tissuefem_tests
     integrator->initialize(context, state);
     while (state.time < end_time * (1 - 1e-12))
       integrator->advance(state, end_time);
+    if (final_u)
+      *final_u = Vector<double>(state.u);
+    if (summary)
+      *summary = integrator->summary();
     return state.u.linfty_norm();
   }
 } // namespace tissuefem_tests
