@@ -243,6 +243,15 @@ namespace tissuefem::problems
       {
         time::StepReport report;
         {
+          // A live tool: positions must cover the step before it starts.
+          if (tool
+              && !tool->synchronize(
+                std::min(state.time + time_parameters.time_step, end_time)))
+            {
+              screen << "live session ended at t = " << state.time << ": "
+                     << tool->live_end() << std::endl;
+              break;
+            }
           TimerOutput::Scope scope(timer, "time steps (integrator)");
           move_tool(state, true);
           const auto start    = std::chrono::steady_clock::now();

@@ -131,6 +131,9 @@ namespace tissuefem::solid
                                    boundary_conditions.held->vertices,
                                    discretization.locally_relevant);
     cache.build(discretization, body_force_present);
+    // Asked for every explicit step; the mesh's extent changes only here.
+    diameter
+      = GridTools::diameter(discretization.dof_handler.get_triangulation());
     fibre_field.build(discretization, materials);
     discretization.initialize_vector(ghosted_u, true);
     discretization.initialize_vector(ghosted_w, true);
@@ -199,7 +202,7 @@ namespace tissuefem::solid
   double
   Solid<dim>::length_scale() const
   {
-    return GridTools::diameter(discretization.dof_handler.get_triangulation());
+    return diameter;
   }
 
 

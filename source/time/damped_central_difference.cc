@@ -28,8 +28,8 @@ namespace tissuefem::time
    * M^-1 K (K applied as differences of internal forces) and printed; a
    * larger 'Time step' is refused unless 'Allow unstable step' is set. A
    * run stops at the first step whose displacement is not finite, exceeds
-   * a thousand times the body's size, or whose stored plus kinetic energy
-   * grows a hundredfold within one step.
+   * a thousand times the body's size, or (tested every tenth step) whose
+   * stored plus kinetic energy grew ten-thousandfold in ten steps.
    * Row-sum lumping is positive for P1 and Q_k elements; it is not for P2
    * tetrahedra, which are refused. The velocity reported at t_{n+1} is
    * (u_{n+1} - u_n)/h, the acceleration that of t_n.
@@ -197,14 +197,14 @@ namespace tissuefem::time
       report.dt = h;
 
       if (!all_finite(state.u))
-        throw SolverError("the explicit scheme diverged at t = "
+        throw SolverError("the explicit scheme is unstable: it diverged at t = "
                           + std::to_string(state.time) + " (step "
                           + std::to_string(h) + ", estimated critical step "
                           + std::to_string(critical_step)
                           + "); nothing was written for this step");
-      // Slow exponential growth (a step just above the critical one) never
-      // jumps a hundredfold in one step; no stable motion of a solid
-      // carries it a thousand times its size away.
+      // Slow exponential growth (a step just above the critical one)
+      // escapes the energy test below; no stable motion of a solid carries
+      // it a thousand times its size away.
       if (state.u.linfty_norm() > 1e3 * solid.length_scale())
         throw SolverError("the explicit scheme is unstable at t = "
                           + std::to_string(state.time)
@@ -212,15 +212,25 @@ namespace tissuefem::time
                             "size (step "
                           + std::to_string(h) + ", estimated critical step "
                           + std::to_string(critical_step) + ")");
-      const double new_energy = total_energy(state.u, state.v);
-      if (energy > 0 && new_energy > 100. * energy)
-        throw SolverError(
-          "the explicit scheme is unstable at t = " + std::to_string(state.time)
-          + ": stored plus kinetic energy grew from " + std::to_string(energy)
-          + " to " + std::to_string(new_energy) + " in one step (step "
-          + std::to_string(h) + ", estimated critical step "
-          + std::to_string(critical_step) + ")");
-      energy = new_energy;
+      // The energy test costs a pass over the cells: every tenth step,
+      // against the energy ten steps before (a ten-thousandfold growth
+      // over ten steps is no motion of a damped or conservative solid
+      // under bounded loads; an unstable step grows far faster).
+      if (++steps_since_energy == 10)
+        {
+          steps_since_energy      = 0;
+          const double new_energy = total_energy(state.u, state.v);
+          if (energy > 0 && new_energy > 1e4 * energy)
+            throw SolverError(
+              "the explicit scheme is unstable at t = "
+              + std::to_string(state.time)
+              + ": stored plus kinetic energy grew from "
+              + std::to_string(energy) + " to " + std::to_string(new_energy)
+              + " in ten steps (step " + std::to_string(h)
+              + ", estimated critical step " + std::to_string(critical_step)
+              + ")");
+          energy = new_energy;
+        }
       return report;
     }
 
@@ -262,6 +272,7 @@ namespace tissuefem::time
     double            critical_step = 0;
     double            omega_max     = 0;
     double            energy        = 0;
+    unsigned int      steps_since_energy = 0;
     // Active region: 1 on dofs propagated in the next step, 0 on frozen
     // ones; free = 1 on unconstrained dofs.
     double       threshold = 0;

@@ -64,6 +64,26 @@ namespace tissuefem::tool
                       "position changes so far) times the tool's motion "
                       "since; 'time' = linear in time from the last two "
                       "steps.");
+    prm.declare_entry("Live port",
+                      "-1",
+                      Patterns::Integer(-1, 65535),
+                      "-1: the tool follows 'Trajectory' or 'Trajectory "
+                      "file'. Otherwise it follows a live client (a device "
+                      "driver or game engine) connected over TCP to "
+                      "127.0.0.1 at this port (0: any free port; the port "
+                      "is printed and written to <Output directory>/"
+                      "live_port): the client sends lines 't x y z' (time, "
+                      "tool position; d(t) is the position minus the "
+                      "first), tissuefem answers each with 't fx fy fz', "
+                      "the force extrapolated to that time, and simulates "
+                      "a step once positions cover its end. 'bye' or "
+                      "closing the connection ends the run cleanly.");
+    prm.declare_entry("Live timeout",
+                      "5",
+                      Patterns::Double(),
+                      "Wall-clock seconds to wait for the live client to "
+                      "connect or send; a silent client ends the run "
+                      "cleanly with the outputs so far; > 0.");
     prm.declare_entry("Haptic budget",
                       "0.002",
                       Patterns::Double(),
@@ -86,6 +106,8 @@ namespace tissuefem::tool
     haptic_rate     = prm.get_double("Haptic rate");
     extrapolation   = prm.get("Force extrapolation");
     haptic_budget   = prm.get_double("Haptic budget");
+    live_port       = prm.get_integer("Live port");
+    live_timeout    = prm.get_double("Live timeout");
     prm.leave_subsection();
     enabled = !Utilities::trim(grasp_point).empty();
     if (!enabled)
@@ -102,6 +124,9 @@ namespace tissuefem::tool
             "must be > 0 (updates per time unit)");
     require(std::isfinite(haptic_budget) && haptic_budget > 0,
             "Tool/Haptic budget",
+            "must be > 0 (seconds)");
+    require(std::isfinite(live_timeout) && live_timeout > 0,
+            "Tool/Live timeout",
             "must be > 0 (seconds)");
   }
 
@@ -156,7 +181,11 @@ namespace tissuefem::tool
             "holds no vertex: none lies within " + std::to_string(p.radius)
               + " of 'Grasp point'");
 
-    if (!Utilities::trim(p.trajectory_file).empty())
+    if (p.live_port >= 0)
+      {
+        // Positions arrive during the run (synchronize()).
+      }
+    else if (!Utilities::trim(p.trajectory_file).empty())
       {
         std::ifstream in(p.trajectory_file);
         require(static_cast<bool>(in),
@@ -216,7 +245,7 @@ namespace tissuefem::tool
                              + " expressions of t separated by ';'");
           }
       }
-    for (unsigned int d = 0; d < dim; ++d)
+    for (unsigned int d = 0; d < dim && p.live_port < 0; ++d)
       require(std::isfinite(displacement(p.grasp_time)[d]),
               "Tool/Trajectory",
               "is not finite at the grasp time");
@@ -236,7 +265,10 @@ namespace tissuefem::tool
           d[c] = trajectory->value(Point<dim>(), c);
         return d;
       }
-    // Linear interpolation in the recorded positions, held at the ends.
+    // Linear interpolation in the recorded positions, held at the ends; a
+    // live tool is at its reference position until the first arrives.
+    if (table.empty())
+      return d;
     auto                row = std::upper_bound(table.begin(),
                                 table.end(),
                                 time,
@@ -304,6 +336,12 @@ namespace tissuefem::tool
   void
   GraspTool<dim>::open(const std::string &directory)
   {
+    // Every process takes part in the link (it shares the positions).
+    if (parameters.live_port >= 0)
+      link = std::make_unique<LiveLink>(parameters.live_port,
+                                        parameters.live_timeout,
+                                        dim,
+                                        directory + "/live_port");
     if (!parallel_tools::is_root())
       return;
     const char *names[3] = {"x", "y", "z"};
@@ -350,16 +388,7 @@ namespace tissuefem::tool
           {
             const double   tau      = next_haptic_time;
             const auto     start    = std::chrono::steady_clock::now();
-            Tensor<1, dim> estimate = last_force;
-            if (!holding)
-              estimate = 0; // let go: nothing to feel
-            else if (parameters.extrapolation == "time")
-              {
-                if (have_rate)
-                  estimate += rate * (tau - t0);
-              }
-            else
-              estimate += stiffness * (displacement(tau) - last_position);
+            const Tensor<1, dim> estimate = extrapolated_force(tau);
             ++haptic_updates;
             if (seconds_since(start) <= parameters.haptic_budget)
               ++within_budget;
@@ -415,6 +444,68 @@ namespace tissuefem::tool
 
 
   template <int dim>
+  Tensor<1, dim>
+  GraspTool<dim>::extrapolated_force(const double tau) const
+  {
+    if (!last_time || !holding)
+      return Tensor<1, dim>(); // nothing simulated yet, or let go
+    Tensor<1, dim> estimate = last_force;
+    if (parameters.extrapolation == "time")
+      {
+        if (have_rate)
+          estimate += rate * (tau - *last_time);
+      }
+    else
+      estimate += stiffness * (displacement(tau) - last_position);
+    return estimate;
+  }
+
+
+  template <int dim>
+  bool
+  GraspTool<dim>::synchronize(const double time)
+  {
+    if (!link)
+      return true;
+    const double eps = 1e-12 * std::max(1., std::abs(time));
+    while (table.empty() || table.back()[0] < time - eps)
+      {
+        if (link->ended())
+          return false;
+        for (const auto &sample : link->receive())
+          {
+            // Out-of-order positions are answered but not followed.
+            if (table.empty() || sample.time > table.back()[0])
+              {
+                std::vector<double> row{sample.time};
+                row.insert(row.end(),
+                           sample.position.begin(),
+                           sample.position.end());
+                table.push_back(row);
+              }
+            const auto           start = std::chrono::steady_clock::now();
+            const Tensor<1, dim> force = extrapolated_force(sample.time);
+            std::vector<double>  values(dim);
+            for (unsigned int d = 0; d < dim; ++d)
+              values[d] = force[d];
+            link->send(sample.time, values);
+            if (seconds_since(start) <= parameters.haptic_budget)
+              ++live_within_budget;
+          }
+      }
+    return true;
+  }
+
+
+  template <int dim>
+  std::string
+  GraspTool<dim>::live_end() const
+  {
+    return link && link->ended() ? link->reason() : std::string();
+  }
+
+
+  template <int dim>
   std::string
   GraspTool<dim>::summary() const
   {
@@ -428,6 +519,14 @@ namespace tissuefem::tool
       << "') against the simulated force: mean "
       << (haptic_updates ? sum_error / haptic_updates : 0.) << ", max "
       << max_error << " (force units; largest tool force " << max_force << ")";
+    if (link)
+      s << "\nlive client: " << link->samples << " positions received, "
+        << link->answers << " forces sent, "
+        << (link->answers ? 100. * live_within_budget / link->answers : 100.)
+        << " % computed within the haptic budget (answers wait while a step "
+           "runs); "
+        << (link->ended() ? "session ended: " + link->reason()
+                          : std::string("session open at the end"));
     return s.str();
   }
 

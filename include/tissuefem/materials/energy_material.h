@@ -95,9 +95,48 @@ namespace tissuefem::materials
       return model().energy(F_small, fibre);
     }
 
+    /**
+     * P = dPsi/dF by the cheapest forward AD the model allows (this is the
+     * explicit methods' inner loop): for invariant models two directions
+     * (I1, J), P = 2 Psi_1 F + Psi_J cof F; for models written in C the
+     * dim (dim + 1) / 2 independent entries of the symmetric C, P = F S with
+     * S = 2 dPsi/dC; otherwise the dim^2 entries of F.
+     */
     Tensor<2, dim>
     stress(const Tensor<2, dim> &F, const Tensor<1, dim> &fibre) const override
     {
+      if constexpr (HasInvariantEnergy<Model>::value)
+        {
+          using Number = Sacado::Fad::SFad<double, 2>;
+          const Number I1(2, 0, F.norm_square());
+          const Number J(2, 1, determinant(F));
+          const Number psi = model().invariant_energy(I1, J);
+          return (2. * psi.dx(0)) * F + psi.dx(1) * cofactor(F);
+        }
+      else if constexpr (HasEnergyInC<Model, dim>::value)
+        {
+          // One AD variable per unordered pair (i, j): seeding C_ij and C_ji
+          // with it gives dPsi/dvar = 2 dPsi/dC_ij off the diagonal and
+          // dPsi/dC_ii on it, so S_ij = dPsi/dvar (i != j), 2 dPsi/dvar
+          // (i = j).
+          constexpr int n_symmetric = dim * (dim + 1) / 2;
+          using Number              = Sacado::Fad::SFad<double, n_symmetric>;
+          const Tensor<2, dim> C    = transpose(F) * F;
+          SmallMatrix<dim, Number> C_ad;
+          unsigned int             index[dim][dim];
+          for (unsigned int i = 0, n = 0; i < dim; ++i)
+            for (unsigned int j = i; j < dim; ++j, ++n)
+              {
+                index[i][j] = index[j][i] = n;
+                C_ad[i][j] = C_ad[j][i] = Number(n_symmetric, n, C[i][j]);
+              }
+          const Number   psi = model().energy_in_C(C_ad, fibre);
+          Tensor<2, dim> S;
+          for (unsigned int i = 0; i < dim; ++i)
+            for (unsigned int j = 0; j < dim; ++j)
+              S[i][j] = (i == j ? 2. : 1.) * psi.dx(index[i][j]);
+          return F * S;
+        }
       SmallMatrix<dim, FirstOrder> F_ad;
       for (unsigned int i = 0; i < dim; ++i)
         for (unsigned int j = 0; j < dim; ++j)

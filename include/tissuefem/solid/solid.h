@@ -191,6 +191,9 @@ namespace tissuefem::solid
       const std::vector<bool> *cells = nullptr;
     };
 
+    /// The reference body's diameter (length_scale()), set by setup().
+    double diameter = 0;
+
     /// The prescribed displacement of every Dirichlet dof at @p time.
     std::map<types::global_dof_index, double>
     dirichlet_values(const double time) const;

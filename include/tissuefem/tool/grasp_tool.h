@@ -6,6 +6,7 @@
 
 #include <tissuefem/solid/solid.h>
 #include <tissuefem/time/interface.h>
+#include <tissuefem/tool/live_link.h>
 
 #include <fstream>
 #include <memory>
@@ -29,6 +30,9 @@ namespace tissuefem::tool
     std::string grasp_point, trajectory, trajectory_file, extrapolation;
     double      radius = 0, grasp_time = 0, release_time = 0, haptic_rate = 0,
            haptic_budget = 0;
+    /// -1: no live client; else the loopback port (0: any free one).
+    int    live_port    = -1;
+    double live_timeout = 5;
   };
 
   /**
@@ -65,9 +69,21 @@ namespace tissuefem::tool
     act(const time::State &state, solid::Solid<dim> &solid);
 
     /// Opens tool_force.csv and haptic_force.csv in @p directory (process
-    /// 0 writes).
+    /// 0 writes); in live mode also starts listening for the client.
     void
     open(const std::string &directory);
+
+    /**
+     * Live mode: receives positions from the client until they cover
+     * @p time, answering each with the force extrapolated to its time.
+     * Returns false when the session ended before (the run should stop;
+     * live_end() says why). Without a live client: true at once.
+     */
+    bool
+    synchronize(const double time);
+    /// Why the live session ended (empty while it goes on).
+    std::string
+    live_end() const;
 
     /// Records the force after a step (every process calls) and returns
     /// it (the force the tissue exerts on the tool, force units).
@@ -84,7 +100,13 @@ namespace tissuefem::tool
     displacement(const double time) const;
 
   private:
+    /// The force at @p tau extrapolated from the last recorded step.
+    Tensor<1, dim>
+    extrapolated_force(const double tau) const;
+
     ToolParameters                       parameters;
+    std::unique_ptr<LiveLink>            link;
+    unsigned int live_within_budget = 0;
     Point<dim>                           grasp_point;
     std::vector<unsigned int>            vertices;
     std::unique_ptr<FunctionParser<dim>> trajectory;
