@@ -49,12 +49,17 @@ namespace tissuefem::problems
     materials::MaterialParameters  material_parameters;
     boundary::BoundaryParameters   boundary_parameters;
     solid::FiniteElementParameters fe_parameters;
-    std::string                    hexahedra, tetrahedra;
+    std::string                    hexahedra, tetrahedra, mesh_file;
     unsigned int                   repetitions;
+    double                         target_ms = 0;
 
+    /// A generated box of @p cell_type with @p subdivisions.
     void
-    benchmark_mesh(const std::string &cell_type,
-                   const std::string &subdivisions) const;
+    benchmark_box(const std::string &cell_type,
+                  const std::string &subdivisions) const;
+    void
+    benchmark_mesh(const geometry::GeometryParameters &geometry,
+                   const std::string                  &label) const;
 
     /// Times internal-force assembly, residual only and with the Jacobian,
     /// of the floor kernel and of tissuefem with 1 and all threads.
@@ -80,6 +85,20 @@ namespace tissuefem::problems
                       Patterns::List(Patterns::Integer(1, 1000)),
                       "Boxes per direction of the unit box whose boxes are "
                       "split into triangles/tetrahedra; empty to skip.");
+    prm.declare_entry("Mesh file",
+                      "",
+                      Patterns::Anything(),
+                      "A mesh file (any format 'Geometry/Mesh file' reads; "
+                      "relative to this parameter file) benchmarked as well, "
+                      "e.g. meshes/jeffrey_muscle.vtu; empty to skip.");
+    prm.declare_entry("Force update target",
+                      "0",
+                      Patterns::Double(0),
+                      "Wall-clock milliseconds one internal-force update of "
+                      "a whole mesh should take (0.25: 500 Hz haptics with "
+                      "8x margin); with > 0, each mesh's report ends with "
+                      "the measured time per update and its ratio to this. "
+                      "0: no target.");
     prm.declare_entry("Repetitions",
                       "3",
                       Patterns::Integer(1, 100),
@@ -90,7 +109,7 @@ namespace tissuefem::problems
 
   template <int dim>
   AssemblyBenchmark<dim>::AssemblyBenchmark(ParameterHandler &prm,
-                                            const RunContext &)
+                                            const RunContext &context)
       : prm(prm)
   {
     material_parameters.parse_parameters(prm);
@@ -100,14 +119,18 @@ namespace tissuefem::problems
     hexahedra   = prm.get("Hexahedra subdivisions");
     tetrahedra  = prm.get("Simplex subdivisions");
     repetitions = prm.get_integer("Repetitions");
+    mesh_file   = Utilities::trim(prm.get("Mesh file"));
+    target_ms   = prm.get_double("Force update target");
     prm.leave_subsection();
+    if (!mesh_file.empty() && mesh_file.front() != '/')
+      mesh_file = context.parameter_directory + "/" + mesh_file;
   }
 
 
   template <int dim>
   void
-  AssemblyBenchmark<dim>::benchmark_mesh(const std::string &cell_type,
-                                         const std::string &subdivisions) const
+  AssemblyBenchmark<dim>::benchmark_box(const std::string &cell_type,
+                                        const std::string &subdivisions) const
   {
     geometry::GeometryParameters geometry;
     geometry.source             = "box";
@@ -117,6 +140,17 @@ namespace tissuefem::problems
     geometry.subdivisions       = subdivisions;
     geometry.scale              = 1;
     geometry.global_refinements = 0;
+    benchmark_mesh(geometry,
+                   cell_type == "simplex" ? "P1 simplices" : "Q1 hypercubes");
+  }
+
+
+  template <int dim>
+  void
+  AssemblyBenchmark<dim>::benchmark_mesh(
+    const geometry::GeometryParameters &geometry,
+    const std::string                  &label) const
+  {
     parallel::shared::Triangulation<dim> triangulation(
       parallel_tools::communicator(),
       Triangulation<dim>::none,
@@ -150,7 +184,7 @@ namespace tissuefem::problems
 
     parallel_tools::screen()
       << "\n"
-      << (cell_type == "simplex" ? "P1 simplices" : "Q1 hypercubes") << ": "
+      << label << ": "
       << triangulation.n_active_cells() << " cells, " << u.size()
       << " unknowns, model '" << material_parameters.model_names[0] << "'\n"
       << std::setw(32) << "tangent" << std::setw(14) << "us per cell"
@@ -307,6 +341,16 @@ namespace tissuefem::problems
              << row.residual / rows[0].residual << std::setw(22) << row.jacobian
              << std::setw(10) << row.jacobian / rows[0].jacobian
              << std::defaultfloat << std::setprecision(6) << "\n";
+    if (target_ms > 0)
+      {
+        const double update_ms = rows.back().residual * n_cells / 1e3;
+        screen << "One internal-force update of the whole mesh (" << n_cells
+               << " cells): " << std::setprecision(3) << update_ms
+               << " ms with " << all_threads << " thread(s) (floor kernel "
+               << rows[0].residual * n_cells / 1e3 << " ms, 1 thread); target "
+               << target_ms << " ms: measured / target = "
+               << update_ms / target_ms << std::setprecision(6) << "\n";
+      }
   }
 
 
@@ -320,9 +364,18 @@ namespace tissuefem::problems
       << repetitions << " runs (wall time; ratios are the figure of "
       << "merit)." << std::endl;
     if (!Utilities::trim(hexahedra).empty())
-      benchmark_mesh("hypercube", hexahedra);
+      benchmark_box("hypercube", hexahedra);
     if (!Utilities::trim(tetrahedra).empty())
-      benchmark_mesh("simplex", tetrahedra);
+      benchmark_box("simplex", tetrahedra);
+    if (!mesh_file.empty())
+      {
+        geometry::GeometryParameters geometry;
+        geometry.source             = "file";
+        geometry.mesh_file          = mesh_file;
+        geometry.scale              = 1;
+        geometry.global_refinements = 0;
+        benchmark_mesh(geometry, "mesh file " + mesh_file);
+      }
   }
 
   template class AssemblyBenchmark<1>;

@@ -12,6 +12,7 @@ namespace tissuefem::problems
       : materials(materials)
   {
     cache.build(discretization, false);
+    fibres.build(discretization, materials);
     DynamicSparsityPattern dsp(discretization.n_dofs());
     DoFTools::make_sparsity_pattern(discretization.dof_handler, dsp);
     sparsity.copy_from(dsp);
@@ -39,15 +40,14 @@ namespace tissuefem::problems
       std::fill(values.begin(), values.end(), 0.);
     std::vector<Tensor<1, dim>> U(n_scalar);
     std::vector<double>         cell_rhs(n), cell_matrix(n * n);
-    Tensor<1, dim>              fibre;
-    fibre[0] = 1;
     Tensor<2, dim> P;
     Tensor<4, dim> A;
     Tensor<3, dim> B;
     for (unsigned int c = 0; c < cache.cells().size(); ++c)
       {
         const auto *dofs     = cache.dofs(c);
-        const auto &material = materials.material(0);
+        const auto &cell     = cache.cells()[c];
+        const auto &material = materials.material(cell->material_id());
         for (unsigned int k = 0; k < n_scalar; ++k)
           for (unsigned int a = 0; a < dim; ++a)
             U[k][a] = u[dofs[cache.local_index[k * dim + a]]];
@@ -60,6 +60,8 @@ namespace tissuefem::problems
             Tensor<2, dim> F   = unit_symmetric_tensor<dim>();
             for (unsigned int k = 0; k < n_scalar; ++k)
               F += outer_product(U[k], cache.gradient(c, q, k));
+            const Tensor<1, dim> &fibre
+              = fibres.at(cell->active_cell_index(), q);
             if (jacobian)
               material.stress_and_tangent(F, fibre, P, A, method);
             else

@@ -44,6 +44,20 @@ namespace tissuefem::materials
   {
   };
 
+  template <typename Model, int dim, typename = void>
+  struct HasClosedFormStress : std::false_type
+  {
+  };
+  template <typename Model, int dim>
+  struct HasClosedFormStress<
+    Model,
+    dim,
+    std::void_t<decltype(std::declval<const Model &>().second_piola_kirchhoff(
+      std::declval<const Tensor<2, dim> &>(),
+      std::declval<const Tensor<1, dim> &>()))>> : std::true_type
+  {
+  };
+
   /**
    * Turns an energy density into a material: @p Model writes
    *
@@ -96,8 +110,9 @@ namespace tissuefem::materials
     }
 
     /**
-     * P = dPsi/dF by the cheapest forward AD the model allows (this is the
-     * explicit methods' inner loop): for invariant models two directions
+     * P = dPsi/dF by the cheapest means the model allows (this is the
+     * explicit methods' inner loop): a closed-form S = dPsi/dE where the
+     * model gives one (P = F S); for invariant models two directions
      * (I1, J), P = 2 Psi_1 F + Psi_J cof F; for models written in C the
      * dim (dim + 1) / 2 independent entries of the symmetric C, P = F S with
      * S = 2 dPsi/dC; otherwise the dim^2 entries of F.
@@ -105,7 +120,13 @@ namespace tissuefem::materials
     Tensor<2, dim>
     stress(const Tensor<2, dim> &F, const Tensor<1, dim> &fibre) const override
     {
-      if constexpr (HasInvariantEnergy<Model>::value)
+      if constexpr (HasClosedFormStress<Model, dim>::value)
+        {
+          const Tensor<2, dim> E
+            = 0.5 * (transpose(F) * F - unit_symmetric_tensor<dim>());
+          return F * model().second_piola_kirchhoff(E, fibre);
+        }
+      else if constexpr (HasInvariantEnergy<Model>::value)
         {
           using Number = Sacado::Fad::SFad<double, 2>;
           const Number I1(2, 0, F.norm_square());

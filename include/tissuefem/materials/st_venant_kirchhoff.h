@@ -44,6 +44,15 @@ namespace tissuefem::materials
       return energy_in_C(right_cauchy_green<dim, Number>(F), a);
     }
 
+    /// S = dPsi/dE = 2 mu E + lambda tr(E) I in closed form: the explicit
+    /// methods' force loop evaluates it at every step (the tests check it
+    /// against the energy by finite differences, as every stress).
+    Tensor<2, dim>
+    second_piola_kirchhoff(const Tensor<2, dim> &E, const Tensor<1, dim> &) const
+    {
+      return (2. * mu) * E + (lambda * trace(E)) * unit_symmetric_tensor<dim>();
+    }
+
     bool
     admits_inversion() const override
     {

@@ -4,6 +4,7 @@
 
 #include <tissuefem/materials/material_set.h>
 #include <tissuefem/solid/cell_cache.h>
+#include <tissuefem/solid/fibre_field.h>
 #include <tissuefem/solid/discretization.h>
 
 #include <vector>
@@ -53,6 +54,7 @@ namespace tissuefem::problems
 
   private:
     const materials::MaterialSet<dim> &materials;
+    solid::FibreField<dim>             fibres;
     solid::CellCache<dim>              cache;
     SparsityPattern                    sparsity;
     /// positions[c * n * n + i * n + j]: entry of element entry (i, j).
