@@ -182,6 +182,8 @@ namespace tissuefem::materials
           case TangentMethod::automatic_differentiation:
             if constexpr (HasInvariantEnergy<Model>::value)
               invariant_ad(F, P, A);
+            else if constexpr (HasEnergyInC<Model, dim>::value)
+              right_cauchy_green_ad(F, fibre, P, A);
             else
               fixed_size_ad(F, fibre, P, A);
             return;
@@ -275,6 +277,77 @@ namespace tissuefem::materials
             A[i][j][i][j] += 2. * psi_1;
           }
       add_cofactor_derivative(F, psi_J, A);
+    }
+
+    /**
+     * For models written in C: the dim (dim + 1) / 2 independent entries of
+     * the symmetric C seeded as nested forward AD numbers (36 second
+     * derivatives in 3D instead of 81 in F), one variable per unordered
+     * pair (i, j) seeding C_ij and C_ji, so that with m = 2 off the
+     * diagonal and 1 on it, dPsi/dC_ij = d1_p / m_p and d2Psi/dC_ij dC_kl =
+     * d2_pq / (m_p m_q). Then S = 2 dPsi/dC, CC = 4 d2Psi/dC dC, P = F S and
+     * A_iJkL = delta_ik S_LJ + F_iM F_kQ CC_MJLQ (P = F S differentiated
+     * with dE/dF from E = (F^T F - I)/2 and the minor symmetry of CC).
+     */
+    void
+    right_cauchy_green_ad(const Tensor<2, dim> &F,
+                          const Tensor<1, dim> &fibre,
+                          Tensor<2, dim>       &P,
+                          Tensor<4, dim>       &A) const
+    {
+      constexpr int n = dim * (dim + 1) / 2;
+      using Inner     = Sacado::Fad::SFad<double, n>;
+      using Outer     = Sacado::Fad::SFad<Inner, n>;
+      const Tensor<2, dim>    C = transpose(F) * F;
+      SmallMatrix<dim, Outer> C_ad;
+      unsigned int            index[dim][dim];
+      double                  weight[n];
+      for (unsigned int i = 0, p = 0; i < dim; ++i)
+        for (unsigned int j = i; j < dim; ++j, ++p)
+          {
+            index[i][j] = index[j][i] = p;
+            weight[p]                 = (i == j ? 1. : 2.);
+            C_ad[i][j] = C_ad[j][i] = Outer(n, p, Inner(n, p, C[i][j]));
+          }
+      const Outer    psi = model().energy_in_C(C_ad, fibre);
+      Tensor<2, dim> S;
+      Tensor<4, dim> CC;
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = 0; j < dim; ++j)
+          {
+            const unsigned int p = index[i][j];
+            S[i][j]              = 2. * psi.dx(p).val() / weight[p];
+            for (unsigned int k = 0; k < dim; ++k)
+              for (unsigned int l = 0; l < dim; ++l)
+                {
+                  const unsigned int q = index[k][l];
+                  CC[i][j][k][l] =
+                    4. * psi.dx(p).dx(q) / (weight[p] * weight[q]);
+                }
+          }
+      P = F * S;
+      // G_kJL = F_kQ CC_MJLQ contracted later with F_iM: G[M][J][L][k].
+      Tensor<4, dim> G;
+      for (unsigned int M = 0; M < dim; ++M)
+        for (unsigned int J = 0; J < dim; ++J)
+          for (unsigned int L = 0; L < dim; ++L)
+            for (unsigned int k = 0; k < dim; ++k)
+              {
+                double sum = 0;
+                for (unsigned int Q = 0; Q < dim; ++Q)
+                  sum += F[k][Q] * CC[M][J][L][Q];
+                G[M][J][L][k] = sum;
+              }
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int J = 0; J < dim; ++J)
+          for (unsigned int k = 0; k < dim; ++k)
+            for (unsigned int L = 0; L < dim; ++L)
+              {
+                double sum = (i == k) ? S[L][J] : 0.;
+                for (unsigned int M = 0; M < dim; ++M)
+                  sum += F[i][M] * G[M][J][L][k];
+                A[i][J][k][L] = sum;
+              }
     }
 
     void
