@@ -25,27 +25,9 @@ using namespace tissuefem;
 
 namespace
 {
-  const char *scene = R"(
-    set Dimension = 1
-    subsection Geometry
-      set Lower corner = 0
-      set Upper corner = 1
-      set Subdivisions = 1
-    end
-    subsection Materials
-      set Model = linear elastic
-      set Young's modulus = 1
-      set Poisson's ratio = 0
-      set Density = 1
-    end
-    subsection Boundary conditions
-      set Dirichlet = 0: x: 0
-      set Initial displacement = 0.01*x
-    end
-    subsection Time integration
+  const std::string scene = tissuefem_tests::one_element_bar(R"(
       set Integrator = damped central difference
-    end
-  )";
+)");
 
   double
   exact(const double c, const double t)

@@ -15,6 +15,7 @@
 #include <tissuefem/time/interface.h>
 
 #include <memory>
+#include <string>
 
 namespace tissuefem_tests
 {
@@ -64,6 +65,39 @@ namespace tissuefem_tests
     solvers::NewtonParameters                          newton_parameters;
     std::unique_ptr<solvers::LinearSolver>             linear_solver;
   };
+
+
+  /**
+   * The single degree of freedom of the order tests: a 1D bar (0, 1) of
+   * one linear element, clamped at x = 0, linear elastic with E = 1, nu =
+   * 0, rho = 1 (so k = 1; lumped mass 1/2, consistent 1/3), started from u
+   * = 0.01 x at rest. @p time_integration is the body of the 'Time
+   * integration' subsection.
+   */
+  inline std::string
+  one_element_bar(const std::string &time_integration)
+  {
+    return R"(
+    set Dimension = 1
+    subsection Geometry
+      set Lower corner = 0
+      set Upper corner = 1
+      set Subdivisions = 1
+    end
+    subsection Materials
+      set Model = linear elastic
+      set Young's modulus = 1
+      set Poisson's ratio = 0
+      set Density = 1
+    end
+    subsection Boundary conditions
+      set Dirichlet = 0: x: 0
+      set Initial displacement = 0.01*x
+    end
+    subsection Time integration
+)" + time_integration
+           + "\n    end\n";
+  }
 
 
   /// Builds the scene of @p prm with 'Time step' @p step and 'End time'
