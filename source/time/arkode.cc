@@ -241,6 +241,9 @@ namespace tissuefem::time
     std::unique_ptr<Stiffness>                          stiffness;
     std::unique_ptr<RadauLinearSystems>                 systems;
     double       factorized_gamma = 0;
+    /// ARKode's step and convergence-failure counts at the last evaluation
+    /// of K (-1: none since the solver started).
+    long int stiffness_steps = -1, stiffness_failures = 0;
     bool         stiffness_fresh  = false;
     unsigned int jacobian_evaluations = 0, linear_solves = 0;
     double       solve_seconds = 0, power_start = 0;
@@ -283,6 +286,7 @@ namespace tissuefem::time
                       stiffness->assembled(),
                       context->linear_solver);
       factorized_gamma = 0;
+      stiffness_steps  = -1;
       power_start      = damping_power(state.v);
     }
 
@@ -422,11 +426,27 @@ namespace tissuefem::time
         }
     }
 
+    /**
+     * ARKode calls this before every linear solve (the product J v may
+     * depend on the iterate); re-evaluating K each time would be full
+     * Newton at an assembly per iteration. K is kept instead, as ARKode
+     * keeps matrix-based Newton matrices: re-evaluated after 20 steps or
+     * after a nonlinear convergence failure (modified Newton).
+     */
     void
     evaluate_stiffness(const double t, const BlockVectorType &x)
     {
       if (!stiffness->assembled())
         return;
+      long int steps = 0, failures = 0;
+      void    *memory = ode->get_arkode_memory();
+      ARKStepGetNumSteps(memory, &steps);
+      ARKStepGetNumNonlinSolvConvFails(memory, &failures);
+      if (stiffness_steps >= 0 && steps - stiffness_steps < 20
+          && failures == stiffness_failures)
+        return;
+      stiffness_steps    = steps;
+      stiffness_failures = failures;
       VectorType u(x.block(0));
       context->solid.apply_dirichlet_values(t, u);
       stiffness->evaluate(context->solid, u, t);
