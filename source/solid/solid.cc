@@ -131,6 +131,7 @@ namespace tissuefem::solid
                                    boundary_conditions.held->vertices,
                                    discretization.locally_relevant);
     cache.build(discretization, body_force_present);
+    find_dirichlet_points();
     // Asked for every explicit step; the mesh's extent changes only here.
     diameter
       = GridTools::diameter(discretization.dof_handler.get_triangulation());
@@ -211,73 +212,6 @@ namespace tissuefem::solid
   Solid<dim>::initialize_vector(VectorType &v) const
   {
     discretization.initialize_vector(v);
-  }
-
-
-  template <int dim>
-  std::map<types::global_dof_index, double>
-  Solid<dim>::dirichlet_values(const double time) const
-  {
-    std::map<types::global_dof_index, double> values;
-    for (auto &d : boundary_conditions.dirichlet)
-      {
-        d.displacement->set_time(time);
-        VectorTools::interpolate_boundary_values(*discretization.mapping,
-                                                 discretization.dof_handler,
-                                                 d.id,
-                                                 *d.displacement,
-                                                 values,
-                                                 d.mask);
-      }
-    if (boundary_conditions.held)
-      {
-        const auto motion = boundary_conditions.held->motion(time);
-        for (const auto &[dof, vertex, component] : held_dofs)
-          values[dof] = held_start.at(dof) + motion[component];
-      }
-    return values;
-  }
-
-
-  template <int dim>
-  void
-  Solid<dim>::apply_dirichlet_values(const double time, VectorType &u) const
-  {
-    for (const auto &[dof, value] : dirichlet_values(time))
-      if (discretization.locally_owned.is_element(dof)
-          && !discretization.hanging_node_constraints.is_constrained(dof))
-        u[dof] = value;
-    u.compress(VectorOperation::insert);
-    discretization.hanging_node_constraints.distribute(u);
-  }
-
-
-  template <int dim>
-  void
-  Solid<dim>::zero_constrained_entries(VectorType &v) const
-  {
-    discretization.constraints.set_zero(v);
-  }
-
-
-  template <int dim>
-  void
-  Solid<dim>::initial_state(VectorType &u, VectorType &v) const
-  {
-    initialize_vector(u);
-    initialize_vector(v);
-    boundary_conditions.initial_displacement->set_time(0);
-    boundary_conditions.initial_velocity->set_time(0);
-    VectorTools::interpolate(*discretization.mapping,
-                             discretization.dof_handler,
-                             *boundary_conditions.initial_displacement,
-                             u);
-    VectorTools::interpolate(*discretization.mapping,
-                             discretization.dof_handler,
-                             *boundary_conditions.initial_velocity,
-                             v);
-    discretization.hanging_node_constraints.distribute(u);
-    discretization.hanging_node_constraints.distribute(v);
   }
 
 
@@ -792,32 +726,6 @@ namespace tissuefem::solid
         force[component] -= residual[dof];
     Utilities::MPI::sum(force, parallel_tools::communicator(), force);
     return force;
-  }
-
-
-  template <int dim>
-  void
-  Solid<dim>::hold(const std::vector<unsigned int>                   &vertices,
-                   const std::function<Tensor<1, dim>(const double)> &motion,
-                   const VectorType                                  &u)
-  {
-    VectorType ghosted;
-    discretization.initialize_vector(ghosted, true);
-    make_ghosted(u, ghosted);
-    boundary_conditions.held = {vertices, motion};
-    setup();
-    held_start.clear();
-    for (const auto &[dof, vertex, component] : held_dofs)
-      held_start[dof] = ghosted[dof];
-  }
-
-
-  template <int dim>
-  void
-  Solid<dim>::release()
-  {
-    boundary_conditions.held.reset();
-    setup();
   }
 
 

@@ -194,6 +194,10 @@ namespace tissuefem::solid
     /// The reference body's diameter (length_scale()), set by setup().
     double diameter = 0;
 
+    /// Fills dirichlet_points for the current mesh.
+    void
+    find_dirichlet_points();
+
     /// The prescribed displacement of every Dirichlet dof at @p time.
     std::map<types::global_dof_index, double>
     dirichlet_values(const double time) const;
@@ -232,6 +236,17 @@ namespace tissuefem::solid
     std::vector<std::tuple<types::global_dof_index, unsigned int, unsigned int>>
                                               held_dofs;
     std::map<types::global_dof_index, double> held_start;
+    /// Per Dirichlet condition (in order): each constrained dof with the
+    /// support point and component its value is taken at, found once per
+    /// mesh, so that the values at a time cost one expression evaluation
+    /// per dof instead of a pass over the boundary.
+    struct DirichletPoint
+    {
+      types::global_dof_index dof;
+      Point<dim>              point;
+      unsigned int            component;
+    };
+    std::vector<std::vector<DirichletPoint>> dirichlet_points;
 
     /// M a + f_int(u) - f_ext(t) on every row, without constraints.
     void
