@@ -184,9 +184,9 @@ namespace tissuefem::problems
 
     parallel_tools::screen()
       << "\n"
-      << label << ": "
-      << triangulation.n_active_cells() << " cells, " << u.size()
-      << " unknowns, model '" << material_parameters.model_names[0] << "'\n"
+      << label << ": " << triangulation.n_active_cells() << " cells, "
+      << u.size() << " unknowns, model '" << material_parameters.model_names[0]
+      << "'\n"
       << std::setw(32) << "tangent" << std::setw(14) << "us per cell"
       << std::setw(16) << "ratio to first" << std::setw(34)
       << "max|K - K_first| / max|K_first|"
@@ -348,8 +348,9 @@ namespace tissuefem::problems
                << " cells): " << std::setprecision(3) << update_ms
                << " ms with " << all_threads << " thread(s) (floor kernel "
                << rows[0].residual * n_cells / 1e3 << " ms, 1 thread); target "
-               << target_ms << " ms: measured / target = "
-               << update_ms / target_ms << std::setprecision(6) << "\n";
+               << target_ms
+               << " ms: measured / target = " << update_ms / target_ms
+               << std::setprecision(6) << "\n";
       }
   }
 

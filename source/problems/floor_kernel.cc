@@ -40,9 +40,9 @@ namespace tissuefem::problems
       std::fill(values.begin(), values.end(), 0.);
     std::vector<Tensor<1, dim>> U(n_scalar);
     std::vector<double>         cell_rhs(n), cell_matrix(n * n);
-    Tensor<2, dim> P;
-    Tensor<4, dim> A;
-    Tensor<3, dim> B;
+    Tensor<2, dim>              P;
+    Tensor<4, dim>              A;
+    Tensor<3, dim>              B;
     for (unsigned int c = 0; c < cache.cells().size(); ++c)
       {
         const auto *dofs     = cache.dofs(c);

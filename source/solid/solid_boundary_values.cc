@@ -149,18 +149,18 @@ namespace tissuefem::solid
     setup();
   }
 
-#define TISSUEFEM_INSTANTIATE(dim)                                           \
-  template void Solid<dim>::find_dirichlet_points();                         \
-  template std::map<types::global_dof_index, double>                         \
-  Solid<dim>::dirichlet_values(const double) const;                          \
-  template void Solid<dim>::apply_dirichlet_values(const double,             \
-                                                   VectorType &) const;      \
-  template void Solid<dim>::zero_constrained_entries(VectorType &) const;    \
-  template void Solid<dim>::initial_state(VectorType &, VectorType &) const; \
-  template void Solid<dim>::hold(                                            \
-    const std::vector<unsigned int> &,                                       \
-    const std::function<Tensor<1, dim>(const double)> &,                     \
-    const VectorType &);                                                     \
+#define TISSUEFEM_INSTANTIATE(dim)                                             \
+  template void Solid<dim>::find_dirichlet_points();                           \
+  template std::map<types::global_dof_index, double>                           \
+                Solid<dim>::dirichlet_values(const double) const;              \
+  template void Solid<dim>::apply_dirichlet_values(const double, VectorType &) \
+    const;                                                                     \
+  template void Solid<dim>::zero_constrained_entries(VectorType &) const;      \
+  template void Solid<dim>::initial_state(VectorType &, VectorType &) const;   \
+  template void Solid<dim>::hold(                                              \
+    const std::vector<unsigned int> &,                                         \
+    const std::function<Tensor<1, dim>(const double)> &,                       \
+    const VectorType &);                                                       \
   template void Solid<dim>::release();
   TISSUEFEM_INSTANTIATE(1)
   TISSUEFEM_INSTANTIATE(2)

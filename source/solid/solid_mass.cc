@@ -115,9 +115,8 @@ namespace tissuefem::solid
                 for (unsigned int a = 0; a < dim; ++a)
                   {
                     const double u_ka
-                      = values[access.ghost_index[c * n
-                                                  + cache.local_index[k * dim
-                                                                      + a]]];
+                      = values[access.ghost_index
+                                 [c * n + cache.local_index[k * dim + a]]];
                     for (unsigned int b = 0; b < dim; ++b)
                       F[a][b] += u_ka * g[b];
                   }
@@ -150,9 +149,8 @@ namespace tissuefem::solid
               for (unsigned int a = 0; a < dim; ++a)
                 velocity[a]
                   += cache.values[q * n_scalar + k]
-                     * values[access.ghost_index[c * n
-                                                 + cache.local_index[k * dim
-                                                                     + a]]];
+                     * values[access.ghost_index
+                                [c * n + cache.local_index[k * dim + a]]];
             energy += 0.5 * rho * velocity.norm_square() * cache.JxW(c)[q];
           }
       }

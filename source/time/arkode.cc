@@ -76,7 +76,8 @@ namespace tissuefem::time
       require(method == "explicit" || order <= 5,
               "Time integration/ARKode/Order",
               "must be 2 to 5 for the implicit method (ARKode's DIRK "
-              "tables), got " + std::to_string(order));
+              "tables), got "
+                + std::to_string(order));
       stiffness = std::make_unique<Stiffness>(jacobian_kind);
     }
 
@@ -153,9 +154,9 @@ namespace tissuefem::time
     advance(State &state, const double end_time) override
     {
       StepReport   report;
-      const auto   start  = std::chrono::steady_clock::now();
-      const double target = std::min(state.time + context->time.time_step,
-                                     end_time);
+      const auto   start = std::chrono::steady_clock::now();
+      const double target
+        = std::min(state.time + context->time.time_step, end_time);
       if (!ode)
         start_solver(state);
       auto counters_before = counters();
@@ -205,9 +206,9 @@ namespace tissuefem::time
       report.damping_work    = 0.5 * h * (power_start + power_end);
       power_start            = power_end;
       derivative(target, y, f);
-      state.a    = f.block(1);
-      state.time = target;
-      report.dt  = h;
+      state.a                 = f.block(1);
+      state.time              = target;
+      report.dt               = h;
       report.assembly_seconds = seconds_since(start) - solve_seconds;
       report.solve_seconds    = solve_seconds;
       solve_seconds           = 0;
@@ -235,16 +236,16 @@ namespace tissuefem::time
     SUNContext sundials_context = nullptr;
     bool       context_ready    = false;
     std::unique_ptr<SUNDIALS::ARKode<BlockVectorType>> ode;
-    BlockVectorType                                     y, f, absolute;
-    const VectorType                                   *mass = nullptr;
-    VectorType                                          free;
-    std::unique_ptr<Stiffness>                          stiffness;
-    std::unique_ptr<RadauLinearSystems>                 systems;
-    double       factorized_gamma = 0;
+    BlockVectorType                                    y, f, absolute;
+    const VectorType                                  *mass = nullptr;
+    VectorType                                         free;
+    std::unique_ptr<Stiffness>                         stiffness;
+    std::unique_ptr<RadauLinearSystems>                systems;
+    double                                             factorized_gamma = 0;
     /// ARKode's step and convergence-failure counts at the last evaluation
     /// of K (-1: none since the solver started).
-    long int stiffness_steps = -1, stiffness_failures = 0;
-    bool         stiffness_fresh  = false;
+    long int     stiffness_steps = -1, stiffness_failures = 0;
+    bool         stiffness_fresh      = false;
     unsigned int jacobian_evaluations = 0, linear_solves = 0;
     double       solve_seconds = 0, power_start = 0;
     std::string  rhs_failure;
@@ -277,10 +278,7 @@ namespace tissuefem::time
       absolute.block(1) = tolerances.absolute_v;
       y.block(0)        = state.u;
       y.block(1)        = state.v;
-      systems           = std::make_unique<RadauLinearSystems>(damping,
-                                                       1.,
-                                                       0.,
-                                                       0.);
+      systems = std::make_unique<RadauLinearSystems>(damping, 1., 0., 0.);
       systems->reinit(*mass,
                       free,
                       stiffness->assembled(),
@@ -329,8 +327,7 @@ namespace tissuefem::time
       double        sum = 0;
       for (unsigned int i = 0; i < local_size(v); ++i)
         sum += m[i] * vp[i] * vp[i];
-      return damping
-             * Utilities::MPI::sum(sum, parallel_tools::communicator());
+      return damping * Utilities::MPI::sum(sum, parallel_tools::communicator());
     }
 
     /// Builds the ARKode object and its callbacks, starting from @p state.
@@ -339,20 +336,19 @@ namespace tissuefem::time
     {
       set_up(state);
       typename SUNDIALS::ARKode<BlockVectorType>::AdditionalData data;
-      data.initial_time       = state.time;
-      data.final_time         = context->time.end_time;
-      data.initial_step_size  = context->time.time_step;
-      data.output_period      = context->time.time_step;
-      data.maximum_order      = order;
-      data.relative_tolerance = tolerances.relative;
-      data.absolute_tolerance = tolerances.absolute_u;
+      data.initial_time                  = state.time;
+      data.final_time                    = context->time.end_time;
+      data.initial_step_size             = context->time.time_step;
+      data.output_period                 = context->time.time_step;
+      data.maximum_order                 = order;
+      data.relative_tolerance            = tolerances.relative;
+      data.absolute_tolerance            = tolerances.absolute_u;
       data.maximum_non_linear_iterations = 4;
       ode = std::make_unique<SUNDIALS::ARKode<BlockVectorType>>(
         data, parallel_tools::communicator());
       ode->reinit_vector = [this](BlockVectorType &v) { v.reinit(y); };
-      ode->get_local_tolerances = [this]() -> BlockVectorType & {
-        return absolute;
-      };
+      ode->get_local_tolerances
+        = [this]() -> BlockVectorType & { return absolute; };
       auto rhs = [this](const double           t,
                         const BlockVectorType &x,
                         BlockVectorType       &fx) -> int {
@@ -371,8 +367,8 @@ namespace tissuefem::time
         ode->explicit_function = rhs;
       else
         {
-          ode->implicit_function     = rhs;
-          ode->jacobian_times_setup  = [this](double                 t,
+          ode->implicit_function    = rhs;
+          ode->jacobian_times_setup = [this](double                 t,
                                              const BlockVectorType &x,
                                              const BlockVectorType &) {
             return guarded([&] { evaluate_stiffness(t, x); });
@@ -384,12 +380,12 @@ namespace tissuefem::time
                                               const BlockVectorType &) {
             return guarded([&] { multiply_jacobian(v, Jv); });
           };
-          ode->solve_linearized_system =
-            [this](SUNDIALS::SundialsOperator<BlockVectorType> &,
-                   SUNDIALS::SundialsPreconditioner<BlockVectorType> &,
-                   BlockVectorType       &x,
-                   const BlockVectorType &b,
-                   double) { return guarded([&] { solve(x, b); }); };
+          ode->solve_linearized_system
+            = [this](SUNDIALS::SundialsOperator<BlockVectorType> &,
+                     SUNDIALS::SundialsPreconditioner<BlockVectorType> &,
+                     BlockVectorType       &x,
+                     const BlockVectorType &b,
+                     double) { return guarded([&] { solve(x, b); }); };
         }
       ode->reset(state.time, context->time.time_step, y);
       void *memory = ode->get_arkode_memory();
@@ -502,7 +498,7 @@ namespace tissuefem::time
     counters() const
     {
       std::array<long int, 3> c{{0, 0, 0}};
-      void *memory = ode->get_arkode_memory();
+      void                   *memory = ode->get_arkode_memory();
       ARKStepGetNumSteps(memory, &c[0]);
       if (method == "implicit")
         ARKStepGetNumNonlinSolvIters(memory, &c[1]);
@@ -518,9 +514,9 @@ namespace tissuefem::time
       char             *name = ARKStepGetReturnFlagName(status);
       const std::string flag(name ? name : "unknown");
       std::free(name);
-      throw SolverError("ARKode: " + std::string(call) + " failed at t = "
-                        + std::to_string(time) + " with code "
-                        + std::to_string(status) + " (" + flag
+      throw SolverError("ARKode: " + std::string(call)
+                        + " failed at t = " + std::to_string(time)
+                        + " with code " + std::to_string(status) + " (" + flag
                         + "); try a looser tolerance, a smaller 'Time "
                           "step' or another integrator");
     }

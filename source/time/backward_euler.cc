@@ -22,8 +22,9 @@ namespace tissuefem::time
    *   e_u = h/2 (v_{n+1} - v_n),   e_v = h/2 (a_{n+1} - a_n),
    * the leading term h^2/2 y'' of the local error of the first-order form
    * y = (u, v) (e_v from the second step on a mesh: a_n must be a backward
-   * Euler acceleration, which the initial state does not have). A step with weighted norm |e| > 1 is rejected; the next h is
-   * h * min(4, max(0.2, 0.9 / sqrt(|e|))) (the estimate is O(h^2)).
+   * Euler acceleration, which the initial state does not have). A step with
+   * weighted norm |e| > 1 is rejected; the next h is h * min(4, max(0.2, 0.9 /
+   * sqrt(|e|))) (the estimate is O(h^2)).
    */
   class BackwardEuler : public ImplicitOneStep
   {
@@ -107,14 +108,10 @@ namespace tissuefem::time
           std::vector<const VectorType *> velocity_errors;
           if (have_acceleration)
             velocity_errors.push_back(&ev);
-          const double error = std::max(tolerances.norm({&eu},
-                                                        velocity_errors,
-                                                        free,
-                                                        state.u,
-                                                        state.v,
-                                                        &next.u,
-                                                        &next.v),
-                                        1e-10);
+          const double error = std::max(
+            tolerances.norm(
+              {&eu}, velocity_errors, free, state.u, state.v, &next.u, &next.v),
+            1e-10);
           h = step * std::min(4., std::max(0.2, 0.9 / std::sqrt(error)));
           if (error > 1.)
             {

@@ -6,8 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 #include <iomanip>
+#include <sstream>
 
 namespace tissuefem::time
 {
@@ -143,8 +143,8 @@ namespace tissuefem::time
           solid.internal_force_on(state.u, cells, force);
           solid.external_force(state.time, external);
           force.sadd(-1., 1., external);
-          cells_evaluated +=
-            std::count(cells.begin(), cells.end(), true) / double(cells.size());
+          cells_evaluated += std::count(cells.begin(), cells.end(), true)
+                             / double(cells.size());
         }
       else
         net_force(state.u, state.time, force);
@@ -221,14 +221,14 @@ namespace tissuefem::time
           steps_since_energy      = 0;
           const double new_energy = total_energy(state.u, state.v);
           if (energy > 0 && new_energy > 1e4 * energy)
-            throw SolverError(
-              "the explicit scheme is unstable at t = "
-              + std::to_string(state.time)
-              + ": stored plus kinetic energy grew from "
-              + std::to_string(energy) + " to " + std::to_string(new_energy)
-              + " in ten steps (step " + std::to_string(h)
-              + ", estimated critical step " + std::to_string(critical_step)
-              + ")");
+            throw SolverError("the explicit scheme is unstable at t = "
+                              + std::to_string(state.time)
+                              + ": stored plus kinetic energy grew from "
+                              + std::to_string(energy) + " to "
+                              + std::to_string(new_energy)
+                              + " in ten steps (step " + std::to_string(h)
+                              + ", estimated critical step "
+                              + std::to_string(critical_step) + ")");
           energy = new_energy;
         }
       return report;
@@ -268,17 +268,17 @@ namespace tissuefem::time
     Context          *context        = nullptr;
     const VectorType *mass           = nullptr;
     VectorType        previous;
-    double            previous_step = 0;
-    double            critical_step = 0;
-    double            omega_max     = 0;
-    double            energy        = 0;
+    double            previous_step      = 0;
+    double            critical_step      = 0;
+    double            omega_max          = 0;
+    double            energy             = 0;
     unsigned int      steps_since_energy = 0;
     // Active region: 1 on dofs propagated in the next step, 0 on frozen
     // ones; free = 1 on unconstrained dofs.
     double       threshold = 0;
     VectorType   active, free;
     double       nodes_propagated = 0, cells_evaluated = 0;
-    unsigned int steps            = 0;
+    unsigned int steps = 0;
 
     void
     check_mesh() const
@@ -317,9 +317,9 @@ namespace tissuefem::time
       double       *x  = local_entries(next);
       double       *on = local_entries(active);
       const double *up = local_entries(u), *m = local_entries(*mass),
-                   *is_free = local_entries(free);
-      const unsigned int n = local_size(next);
-      const unsigned int d = context->solid.n_components();
+                   *is_free         = local_entries(free);
+      const unsigned int n          = local_size(next);
+      const unsigned int d          = context->solid.n_components();
       double             propagated = 0;
       for (unsigned int node = 0; node + d <= n; node += d)
         {
@@ -340,9 +340,9 @@ namespace tissuefem::time
             }
           propagated += propagate ? d : 0;
         }
-      nodes_propagated +=
-        Utilities::MPI::sum(propagated, parallel_tools::communicator())
-        / context->solid.n_dofs();
+      nodes_propagated
+        += Utilities::MPI::sum(propagated, parallel_tools::communicator())
+           / context->solid.n_dofs();
       ++steps;
     }
 

@@ -60,8 +60,8 @@ namespace tissuefem::time
   {
     const double *is_free = local_entries(free);
     const double *a0 = local_entries(u0), *b0 = local_entries(v0);
-    const double *a1 = u1 ? local_entries(*u1) : nullptr;
-    const double *b1 = v1 ? local_entries(*v1) : nullptr;
+    const double *a1  = u1 ? local_entries(*u1) : nullptr;
+    const double *b1  = v1 ? local_entries(*v1) : nullptr;
     double        sum = 0, count = 0;
     for (unsigned int i = 0; i < local_size(free); ++i)
       if (is_free[i] > 0)

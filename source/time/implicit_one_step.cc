@@ -91,10 +91,10 @@ namespace tissuefem::time
   StepReport
   ImplicitOneStep::advance(State &state, const double end_time)
   {
-    auto      &linear_solver = context->linear_solver;
-    StepReport report;
-    double     h = std::min(step_size, end_time - state.time);
-    State      next;
+    auto              &linear_solver = context->linear_solver;
+    StepReport         report;
+    double             h = std::min(step_size, end_time - state.time);
+    State              next;
     const unsigned int linear_before = linear_solver.statistics().iterations;
     for (unsigned int halvings = 0;; ++halvings)
       {

@@ -98,8 +98,8 @@ namespace tissuefem::time
       damping       = p.get_double("Damping ratio");
       jacobian_kind = p.get("Jacobian");
       tolerances.parse_parameters(p, "Time integration/Radau IIA/");
-      adaptive      = p.get_bool("Adaptive step");
-      max_newton    = p.get_integer("Maximum Newton iterations");
+      adaptive   = p.get_bool("Adaptive step");
+      max_newton = p.get_integer("Maximum Newton iterations");
       p.leave_subsection();
       p.leave_subsection();
       const std::string section = "Time integration/Radau IIA/";
@@ -256,11 +256,11 @@ namespace tissuefem::time
     };
 
     // Parameters.
-    double       damping = 0;
+    double          damping = 0;
     ErrorTolerances tolerances;
-    std::string  jacobian_kind;
-    bool         adaptive   = true;
-    unsigned int max_newton = 7;
+    std::string     jacobian_kind;
+    bool            adaptive   = true;
+    unsigned int    max_newton = 7;
 
     Context                   *context = nullptr;
     std::unique_ptr<Stiffness> stiffness;
@@ -429,7 +429,7 @@ namespace tissuefem::time
 
     const double fnewt
       = std::max(10. * eps / tolerances.relative,
-                   std::min(0.03, std::sqrt(tolerances.relative)));
+                 std::min(0.03, std::sqrt(tolerances.relative)));
     faccon                           = std::pow(std::max(faccon, eps), 0.8);
     theta                            = 1;
     double                    dynold = 0, thqold = 0;

@@ -386,8 +386,8 @@ namespace tissuefem::tool
           next_haptic_time = (std::floor(t0 / period) + 1) * period;
         for (; next_haptic_time <= t1 * (1 + 1e-12); next_haptic_time += period)
           {
-            const double   tau      = next_haptic_time;
-            const auto     start    = std::chrono::steady_clock::now();
+            const double         tau      = next_haptic_time;
+            const auto           start    = std::chrono::steady_clock::now();
             const Tensor<1, dim> estimate = extrapolated_force(tau);
             ++haptic_updates;
             if (seconds_since(start) <= parameters.haptic_budget)

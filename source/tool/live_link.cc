@@ -194,16 +194,14 @@ namespace tissuefem::tool
         flat.push_back(s.time);
         flat.insert(flat.end(), s.position.begin(), s.position.end());
       }
-    flat   = Utilities::MPI::broadcast(parallel_tools::communicator(), flat, 0);
-    reason = Utilities::MPI::broadcast(parallel_tools::communicator(),
-                                       reason,
-                                       0);
+    flat = Utilities::MPI::broadcast(parallel_tools::communicator(), flat, 0);
+    reason
+      = Utilities::MPI::broadcast(parallel_tools::communicator(), reason, 0);
     received.clear();
     for (std::size_t i = 0; i + dim < flat.size(); i += dim + 1)
-      received.push_back(
-        Sample{flat[i],
-               std::vector<double>(flat.begin() + i + 1,
-                                   flat.begin() + i + 1 + dim)});
+      received.push_back(Sample{
+        flat[i],
+        std::vector<double>(flat.begin() + i + 1, flat.begin() + i + 1 + dim)});
     samples += received.size();
     if (!reason.empty() && !has_ended)
       {

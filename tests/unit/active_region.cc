@@ -95,8 +95,8 @@ main(int argc, char **argv)
   std::cout.rdbuf(screen);
   std::ostringstream detail;
   detail << "errors " << errors[0] << ' ' << errors[1] << ' ' << errors[2]
-         << ", propagated " << shares[0] << ' ' << shares[1] << ' '
-         << shares[2] << " %";
+         << ", propagated " << shares[0] << ' ' << shares[1] << ' ' << shares[2]
+         << " %";
   tissuefem_tests::check(errors[0] > errors[1] && errors[1] > errors[2]
                            && errors[2] < 1e-6,
                          "active region: error falls with the threshold, "

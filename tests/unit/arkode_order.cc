@@ -70,10 +70,8 @@ main(int argc, char **argv)
   std::streambuf    *screen = std::cout.rdbuf(discarded.rdbuf());
 
   for (const auto &[method, order] :
-       std::vector<std::pair<std::string, unsigned int>>{{"explicit", 2},
-                                                         {"explicit", 4},
-                                                         {"implicit", 3},
-                                                         {"implicit", 4}})
+       std::vector<std::pair<std::string, unsigned int>>{
+         {"explicit", 2}, {"explicit", 4}, {"implicit", 3}, {"implicit", 4}})
     {
       set(prm, "Method", method);
       set(prm, "Order", std::to_string(order));

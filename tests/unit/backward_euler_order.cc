@@ -63,9 +63,8 @@ main(int argc, char **argv)
       prm.set("Absolute velocity tolerance", tolerance / 100);
       prm.leave_subsection();
       prm.leave_subsection();
-      adaptive_errors.push_back(
-        std::abs(tissuefem_tests::run_to_end<1>(prm, 0.25, 1.)
-                 - std::abs(exact(1.))));
+      adaptive_errors.push_back(std::abs(
+        tissuefem_tests::run_to_end<1>(prm, 0.25, 1.) - std::abs(exact(1.))));
       prm.enter_subsection("Time integration");
       prm.enter_subsection("Backward Euler");
     }

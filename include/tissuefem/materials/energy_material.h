@@ -140,9 +140,9 @@ namespace tissuefem::materials
           // with it gives dPsi/dvar = 2 dPsi/dC_ij off the diagonal and
           // dPsi/dC_ii on it, so S_ij = dPsi/dvar (i != j), 2 dPsi/dvar
           // (i = j).
-          constexpr int n_symmetric = dim * (dim + 1) / 2;
-          using Number              = Sacado::Fad::SFad<double, n_symmetric>;
-          const Tensor<2, dim> C    = transpose(F) * F;
+          constexpr int n_symmetric  = dim * (dim + 1) / 2;
+          using Number               = Sacado::Fad::SFad<double, n_symmetric>;
+          const Tensor<2, dim>     C = transpose(F) * F;
           SmallMatrix<dim, Number> C_ad;
           unsigned int             index[dim][dim];
           for (unsigned int i = 0, n = 0; i < dim; ++i)
@@ -295,9 +295,9 @@ namespace tissuefem::materials
                           Tensor<2, dim>       &P,
                           Tensor<4, dim>       &A) const
     {
-      constexpr int n = dim * (dim + 1) / 2;
-      using Inner     = Sacado::Fad::SFad<double, n>;
-      using Outer     = Sacado::Fad::SFad<Inner, n>;
+      constexpr int n           = dim * (dim + 1) / 2;
+      using Inner               = Sacado::Fad::SFad<double, n>;
+      using Outer               = Sacado::Fad::SFad<Inner, n>;
       const Tensor<2, dim>    C = transpose(F) * F;
       SmallMatrix<dim, Outer> C_ad;
       unsigned int            index[dim][dim];
@@ -321,8 +321,8 @@ namespace tissuefem::materials
               for (unsigned int l = 0; l < dim; ++l)
                 {
                   const unsigned int q = index[k][l];
-                  CC[i][j][k][l] =
-                    4. * psi.dx(p).dx(q) / (weight[p] * weight[q]);
+                  CC[i][j][k][l]
+                    = 4. * psi.dx(p).dx(q) / (weight[p] * weight[q]);
                 }
           }
       P = F * S;

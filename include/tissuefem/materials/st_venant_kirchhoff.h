@@ -48,7 +48,8 @@ namespace tissuefem::materials
     /// methods' force loop evaluates it at every step (the tests check it
     /// against the energy by finite differences, as every stress).
     Tensor<2, dim>
-    second_piola_kirchhoff(const Tensor<2, dim> &E, const Tensor<1, dim> &) const
+    second_piola_kirchhoff(const Tensor<2, dim> &E,
+                           const Tensor<1, dim> &) const
     {
       return (2. * mu) * E + (lambda * trace(E)) * unit_symmetric_tensor<dim>();
     }

@@ -4,8 +4,8 @@
 
 #include <tissuefem/materials/material_set.h>
 #include <tissuefem/solid/cell_cache.h>
-#include <tissuefem/solid/fibre_field.h>
 #include <tissuefem/solid/discretization.h>
+#include <tissuefem/solid/fibre_field.h>
 
 #include <vector>
 

@@ -22,10 +22,10 @@ namespace tissuefem::time
   {
     /// Declares the three tolerances in the current subsection.
     static void
-    declare_parameters(ParameterHandler &prm,
-                       const std::string &relative  = "1e-4",
-                       const std::string &absolute  = "1e-6",
-                       const std::string &velocity  = "1e-4");
+    declare_parameters(ParameterHandler  &prm,
+                       const std::string &relative = "1e-4",
+                       const std::string &absolute = "1e-6",
+                       const std::string &velocity = "1e-4");
     /// Reads them from the current subsection; @p section names it in
     /// error messages (e.g. "Time integration/Radau IIA/").
     void

@@ -56,7 +56,10 @@ namespace tissuefem::time
      * Newton's reason for failing. Iterations and times go into @p report.
      */
     std::string
-    attempt(const State &state, const double h, State &next, StepReport &report);
+    attempt(const State &state,
+            const double h,
+            State       &next,
+            StepReport  &report);
 
     /// One Newton iteration from the guess @p u with the change of the
     /// prescribed values as inhomogeneous constraints of the update

@@ -106,7 +106,7 @@ namespace tissuefem::tool
 
     ToolParameters                       parameters;
     std::unique_ptr<LiveLink>            link;
-    unsigned int live_within_budget = 0;
+    unsigned int                         live_within_budget = 0;
     Point<dim>                           grasp_point;
     std::vector<unsigned int>            vertices;
     std::unique_ptr<FunctionParser<dim>> trajectory;
