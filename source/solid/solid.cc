@@ -643,6 +643,31 @@ namespace tissuefem::solid
 
   template <int dim>
   void
+  Solid<dim>::mark_dofs_of(const std::vector<bool> &cells, VectorType &mask)
+  {
+    AssertDimension(cells.size(), cache.cells().size());
+    // Counts from every process's cells (ghost dofs included), then 0/1
+    // in a vector laid out like the unknowns.
+    VectorType counts;
+    discretization.initialize_assembly_vector(counts);
+    const std::vector<double> ones(cache.n_dofs, 1.);
+    for (unsigned int c = 0; c < cells.size(); ++c)
+      if (cells[c])
+        no_constraints.distribute_local_to_global(ones.begin(),
+                                                  ones.end(),
+                                                  cache.dofs(c),
+                                                  counts);
+    counts.compress(VectorOperation::add);
+    initialize_vector(mask);
+    const double *from = counts.trilinos_vector()[0];
+    double       *to   = mask.trilinos_vector()[0];
+    for (unsigned int i = 0; i < mask.locally_owned_size(); ++i)
+      to[i] = from[i] > 0 ? 1. : 0.;
+  }
+
+
+  template <int dim>
+  void
   Solid<dim>::external_force(const double time, VectorType &force)
   {
     // Most surgical scenes have no load but the tool: skip the pass.

@@ -61,12 +61,13 @@ namespace tissuefem::time
       auto &p = const_cast<ParameterHandler &>(prm);
       p.enter_subsection("Time integration");
       p.enter_subsection("ARKode");
-      method        = p.get("Method");
-      order         = p.get_integer("Order");
-      damping       = p.get_double("Damping ratio");
-      jacobian_kind = p.get("Jacobian");
-      max_steps     = p.get_integer("Maximum steps per interval");
-      adaptive      = p.get_bool("Adaptive step");
+      method          = p.get("Method");
+      order           = p.get_integer("Order");
+      damping         = p.get_double("Damping ratio");
+      jacobian_kind   = p.get("Jacobian");
+      every_iteration = p.get("Jacobian update") == "iteration";
+      max_steps       = p.get_integer("Maximum steps per interval");
+      adaptive        = p.get_bool("Adaptive step");
       tolerances.parse_parameters(p, "Time integration/ARKode/");
       p.leave_subsection();
       p.leave_subsection();
@@ -118,6 +119,16 @@ namespace tissuefem::time
                         "The stiffness in the Newton matrix of the implicit "
                         "method: analytical (the AD tangent), numerical "
                         "(differenced forces) or simplified (none).");
+      prm.declare_entry("Jacobian update",
+                        "iteration",
+                        Patterns::Selection("iteration|stage"),
+                        "When the implicit method re-evaluates K: at every "
+                        "Newton iteration (full Newton: robust at large "
+                        "fixed steps) or at the first iteration of each "
+                        "stage and after a convergence failure (modified "
+                        "Newton: fewer assemblies, but at fixed steps a "
+                        "failure ends the run, since ARKode answers it by "
+                        "shrinking the step).");
       prm.declare_entry("Maximum steps per interval",
                         "100000",
                         Patterns::Integer(1),
@@ -226,10 +237,11 @@ namespace tissuefem::time
 
   private:
     std::string     method, jacobian_kind;
-    unsigned int    order     = 4;
-    unsigned int    max_steps = 100000;
-    bool            adaptive  = true;
-    double          damping   = 0;
+    unsigned int    order           = 4;
+    unsigned int    max_steps       = 100000;
+    bool            adaptive        = true;
+    bool            every_iteration = true;
+    double          damping         = 0;
     ErrorTolerances tolerances;
     Context        *context = nullptr;
 
@@ -245,6 +257,7 @@ namespace tissuefem::time
     /// ARKode's step and convergence-failure counts at the last evaluation
     /// of K (-1: none since the solver started).
     long int     stiffness_steps = -1, stiffness_failures = 0;
+    double       stiffness_time       = 0;
     bool         stiffness_fresh      = false;
     unsigned int jacobian_evaluations = 0, linear_solves = 0;
     double       solve_seconds = 0, power_start = 0;
@@ -424,25 +437,39 @@ namespace tissuefem::time
 
     /**
      * ARKode calls this before every linear solve (the product J v may
-     * depend on the iterate); re-evaluating K each time would be full
-     * Newton at an assembly per iteration. K is kept instead, as ARKode
-     * keeps matrix-based Newton matrices: re-evaluated after 20 steps or
-     * after a nonlinear convergence failure (modified Newton).
+     * depend on the iterate): with 'Jacobian update = iteration' K is
+     * evaluated each time (full Newton). With 'stage' it is kept within a
+     * stage instead (modified Newton on each stage equation) and re-evaluated
+     * at the first solve of each new stage (a new time t) or after a nonlinear
+     * convergence failure. (Keeping it for 20 steps, as ARKode keeps
+     * matrix-based Newton matrices, made fixed-step runs fail: ARKode sees a
+     * matrix-free solver and answers a failure by shrinking the step, not
+     * by asking for a fresh Jacobian.)
      */
     void
     evaluate_stiffness(const double t, const BlockVectorType &x)
     {
       if (!stiffness->assembled())
         return;
+      if (every_iteration)
+        {
+          VectorType u(x.block(0));
+          context->solid.apply_dirichlet_values(t, u);
+          stiffness->evaluate(context->solid, u, t);
+          ++jacobian_evaluations;
+          stiffness_fresh = true;
+          return;
+        }
       long int steps = 0, failures = 0;
       void    *memory = ode->get_arkode_memory();
       ARKStepGetNumSteps(memory, &steps);
       ARKStepGetNumNonlinSolvConvFails(memory, &failures);
-      if (stiffness_steps >= 0 && steps - stiffness_steps < 20
-          && failures == stiffness_failures)
+      if (stiffness_steps >= 0 && steps == stiffness_steps
+          && failures == stiffness_failures && t == stiffness_time)
         return;
       stiffness_steps    = steps;
       stiffness_failures = failures;
+      stiffness_time     = t;
       VectorType u(x.block(0));
       context->solid.apply_dirichlet_values(t, u);
       stiffness->evaluate(context->solid, u, t);

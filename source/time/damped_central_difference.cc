@@ -76,7 +76,12 @@ namespace tissuefem::time
                         "none of whose nodes moved in the last step are not "
                         "evaluated; nodes whose prescribed displacement "
                         "moves are always propagated. 0: every node, "
-                        "every step (exact scheme).");
+                        "every step (exact scheme). The error against the "
+                        "exact scheme falls with the threshold; too large a "
+                        "threshold (one that freezes moving tissue, e.g. "
+                        "1e-2 N on the muscle scene, nodes slower than "
+                        "about 0.1 m/s) has made runs unstable: check with "
+                        "parameters/studies/active_region.sh.");
       prm.declare_entry("Allow unstable step",
                         "false",
                         Patterns::Bool(),
@@ -138,7 +143,11 @@ namespace tissuefem::time
       VectorType force;
       if (threshold > 0)
         {
-          const auto cells = solid.cells_touching(active);
+          // Cells within two rings of the moving nodes: every node of
+          // the first ring (moving nodes and their neighbours) then gets
+          // its complete force, the only force a frozen node may wake on.
+          solid.mark_dofs_of(solid.cells_touching(active), complete);
+          const auto cells = solid.cells_touching(complete);
           VectorType external;
           solid.internal_force_on(state.u, cells, force);
           solid.external_force(state.time, external);
@@ -275,8 +284,10 @@ namespace tissuefem::time
     unsigned int      steps_since_energy = 0;
     // Active region: 1 on dofs propagated in the next step, 0 on frozen
     // ones; free = 1 on unconstrained dofs.
-    double       threshold = 0;
-    VectorType   active, free;
+    double     threshold = 0;
+    VectorType active, free;
+    /// 1 on the dofs of the first ring (nodes with a complete force).
+    VectorType   complete;
     double       nodes_propagated = 0, cells_evaluated = 0;
     unsigned int steps = 0;
 
@@ -306,16 +317,19 @@ namespace tissuefem::time
      * in one step (net force and inertia together, so that a node passing
      * through equilibrium at speed keeps moving), is below the threshold.
      * Nodes whose prescribed displacement moves are always propagated.
-     * The cells of the next step's force evaluation are those touching a
-     * propagated node (cells_touching(active)); a frozen node next to them
-     * gets its force from them and wakes when it exceeds the threshold.
+     * The next step evaluates the cells within two rings of the
+     * propagated nodes, so that they and their neighbours (the first
+     * ring) get complete forces; a frozen node in the first ring wakes
+     * when its force moves it by more than the threshold allows, one
+     * further out stays (no neighbour of it moved).
      * Dofs come in blocks of dim per node.
      */
     void
     update_active_region(const VectorType &u, const double h, VectorType &next)
     {
-      double       *x  = local_entries(next);
-      double       *on = local_entries(active);
+      double       *x              = local_entries(next);
+      double       *on             = local_entries(active);
+      const double *complete_force = local_entries(complete);
       const double *up = local_entries(u), *m = local_entries(*mass),
                    *is_free         = local_entries(free);
       const unsigned int n          = local_size(next);
@@ -330,8 +344,12 @@ namespace tissuefem::time
               effective += std::pow(m[k] * (x[k] - up[k]), 2);
               moved = moved || (is_free[k] == 0 && x[k] != up[k]);
             }
+          // A node outside the first ring has a partial force (some of
+          // its cells were skipped) and no moving neighbour: it stays.
           const bool propagate
-            = moved || std::sqrt(effective) >= threshold * h * h;
+            = moved
+              || (complete_force[node] > 0
+                  && std::sqrt(effective) >= threshold * h * h);
           for (unsigned int k = node; k < node + d; ++k)
             {
               on[k] = propagate ? 1. : 0.;

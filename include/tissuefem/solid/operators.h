@@ -121,6 +121,12 @@ namespace tissuefem::solid
     /// of freedom has a non-zero entry in @p mask.
     virtual std::vector<bool>
     cells_touching(const VectorType &mask) = 0;
+    /// Sets @p mask to 1 on the degrees of freedom of the cells flagged in
+    /// @p cells (indexed as cells_touching() returns them), 0 elsewhere;
+    /// collective.
+    virtual void
+    mark_dofs_of(const std::vector<bool> &cells, VectorType &mask)
+      = 0;
 
     /// f_ext(t) (rows of constrained degrees of freedom included).
     virtual void

@@ -108,6 +108,9 @@ namespace tissuefem::solid
     cells_touching(const VectorType &mask) override;
 
     void
+    mark_dofs_of(const std::vector<bool> &cells, VectorType &mask) override;
+
+    void
     external_force(const double time, VectorType &force) override;
 
     const MatrixType &
