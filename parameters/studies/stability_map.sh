@@ -26,7 +26,7 @@
 # Bisection in log space between STABILITY_LOWER and STABILITY_UPPER
 # (STABILITY_ITERATIONS halvings of the log interval): the upper bound is
 # tried first, and a run stable there is reported as '>= upper bound'
-# (L-stable implicit methods usually are); a run unstable at the lower
+# (backward Euler is, on this scene); a run unstable at the lower
 # bound as '< lower bound'. The theoretical critical step is the one the
 # damped central difference prints for the same scene (a one-step run).
 #
