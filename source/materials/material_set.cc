@@ -99,8 +99,9 @@ namespace tissuefem::materials
         "in invariants, else of Psi(F)), 'automatic differentiation in F' "
         "(fixed-size Sacado in the entries of F for every model), 'deal.II AD "
         "helper' (deal.II's Differentiation::AD::ScalarFunction with dynamic "
-        "Sacado numbers, slowest) or 'hand coded' (closed form; neo-Hookean "
-        "models only).");
+        "Sacado numbers, slowest) or 'hand coded' (closed form; the "
+        "neo-Hookean "
+        "models, St Venant-Kirchhoff and its transversely isotropic variant).");
       prm.declare_entry(
         "Fibre direction",
         "1; 0; 0",

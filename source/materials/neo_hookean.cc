@@ -19,8 +19,9 @@ namespace tissuefem::materials
   void
   NeoHookeanFamily<dim, Volume>::hand_coded_stress_and_tangent(
     const Tensor<2, dim> &F,
-    Tensor<2, dim>       &P,
-    Tensor<4, dim>       &A) const
+    const Tensor<1, dim> &,
+    Tensor<2, dim> &P,
+    Tensor<4, dim> &A) const
   {
     const double         J   = determinant(F);
     const double         g   = Volume::value(J);

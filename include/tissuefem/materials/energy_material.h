@@ -44,6 +44,33 @@ namespace tissuefem::materials
   {
   };
 
+  /**
+   * For models whose S = dPsi/dE is linear in E (St Venant-Kirchhoff and
+   * its transversely isotropic variant): P = F S and the hand-coded
+   * tangent A_iJkL = delta_ik S_LJ + F_iM F_kQ CC_MJLQ, whose material part
+   * the model adds (add_material_tangent()).
+   */
+  template <int dim, typename Model>
+  void
+  quadratic_in_E_stress_and_tangent(const Model          &model,
+                                    const Tensor<2, dim> &F,
+                                    const Tensor<1, dim> &fibre,
+                                    Tensor<2, dim>       &P,
+                                    Tensor<4, dim>       &A)
+  {
+    const Tensor<2, dim> E
+      = 0.5 * (transpose(F) * F - unit_symmetric_tensor<dim>());
+    const Tensor<2, dim> S = model.second_piola_kirchhoff(E, fibre);
+    P                      = F * S;
+    A                      = 0;
+    for (unsigned int i = 0; i < dim; ++i)
+      for (unsigned int J = 0; J < dim; ++J)
+        for (unsigned int L = 0; L < dim; ++L)
+          A[i][J][i][L] = S[L][J];
+    model.add_material_tangent(F, fibre, A);
+  }
+
+
   template <typename Model, int dim, typename = void>
   struct HasClosedFormStress : std::false_type
   {
@@ -194,7 +221,7 @@ namespace tissuefem::materials
             dealii_helper(F, fibre, P, A);
             return;
           case TangentMethod::hand_coded:
-            hand_coded_stress_and_tangent(F, P, A);
+            hand_coded_stress_and_tangent(F, fibre, P, A);
             return;
         }
     }
@@ -226,6 +253,7 @@ namespace tissuefem::materials
     /// has_hand_coded_tangent().
     virtual void
     hand_coded_stress_and_tangent(const Tensor<2, dim> &,
+                                  const Tensor<1, dim> &,
                                   Tensor<2, dim> &,
                                   Tensor<4, dim> &) const
     {

@@ -118,8 +118,9 @@ namespace tissuefem::materials
      */
     void
     hand_coded_stress_and_tangent(const Tensor<2, dim> &F,
-                                  Tensor<2, dim>       &P,
-                                  Tensor<4, dim>       &A) const override;
+                                  const Tensor<1, dim> &,
+                                  Tensor<2, dim> &P,
+                                  Tensor<4, dim> &A) const override;
 
   private:
     const double lambda;

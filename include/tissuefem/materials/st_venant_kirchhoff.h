@@ -54,10 +54,43 @@ namespace tissuefem::materials
       return (2. * mu) * E + (lambda * trace(E)) * unit_symmetric_tensor<dim>();
     }
 
+    /// F_iM F_kQ CC_MJLQ with CC = lambda I x I + 2 mu II: lambda F_iJ
+    /// F_kL + mu (F_iL F_kJ + (F F^T)_ik delta_JL).
+    void
+    add_material_tangent(const Tensor<2, dim> &F,
+                         const Tensor<1, dim> &,
+                         Tensor<4, dim> &A) const
+    {
+      const Tensor<2, dim> B = F * transpose(F);
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int J = 0; J < dim; ++J)
+          for (unsigned int k = 0; k < dim; ++k)
+            for (unsigned int L = 0; L < dim; ++L)
+              A[i][J][k][L]
+                += lambda * F[i][J] * F[k][L]
+                   + mu * (F[i][L] * F[k][J] + (J == L ? B[i][k] : 0.));
+    }
+
+    bool
+    has_hand_coded_tangent() const override
+    {
+      return true;
+    }
+
     bool
     admits_inversion() const override
     {
       return true;
+    }
+
+  protected:
+    void
+    hand_coded_stress_and_tangent(const Tensor<2, dim> &F,
+                                  const Tensor<1, dim> &fibre,
+                                  Tensor<2, dim>       &P,
+                                  Tensor<4, dim>       &A) const override
+    {
+      quadratic_in_E_stress_and_tangent(*this, F, fibre, P, A);
     }
 
   private:

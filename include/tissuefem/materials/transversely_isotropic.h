@@ -58,6 +58,32 @@ namespace tissuefem::materials
              + (2. * fibre_coefficient * (a * (E * a))) * outer_product(a, a);
     }
 
+    /// F_iM F_kQ CC_MJLQ with CC = lambda I x I + 2 mu II + 2 k a x a x a
+    /// x a: the isotropic terms of St Venant-Kirchhoff plus 2 k (F a)_i
+    /// a_J (F a)_k a_L.
+    void
+    add_material_tangent(const Tensor<2, dim> &F,
+                         const Tensor<1, dim> &a,
+                         Tensor<4, dim>       &A) const
+    {
+      const Tensor<2, dim> B  = F * transpose(F);
+      const Tensor<1, dim> Fa = F * a;
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int J = 0; J < dim; ++J)
+          for (unsigned int k = 0; k < dim; ++k)
+            for (unsigned int L = 0; L < dim; ++L)
+              A[i][J][k][L]
+                += lambda * F[i][J] * F[k][L]
+                   + mu * (F[i][L] * F[k][J] + (J == L ? B[i][k] : 0.))
+                   + 2. * fibre_coefficient * Fa[i] * a[J] * Fa[k] * a[L];
+    }
+
+    bool
+    has_hand_coded_tangent() const override
+    {
+      return true;
+    }
+
     bool
     admits_inversion() const override
     {
@@ -68,6 +94,16 @@ namespace tissuefem::materials
     uses_fibres() const override
     {
       return true;
+    }
+
+  protected:
+    void
+    hand_coded_stress_and_tangent(const Tensor<2, dim> &F,
+                                  const Tensor<1, dim> &fibre,
+                                  Tensor<2, dim>       &P,
+                                  Tensor<4, dim>       &A) const override
+    {
+      quadratic_in_E_stress_and_tangent(*this, F, fibre, P, A);
     }
 
   private:
