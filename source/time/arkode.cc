@@ -359,7 +359,6 @@ namespace tissuefem::time
       data.maximum_non_linear_iterations = 4;
       ode = std::make_unique<SUNDIALS::ARKode<BlockVectorType>>(
         data, parallel_tools::communicator());
-      ode->reinit_vector = [this](BlockVectorType &v) { v.reinit(y); };
       ode->get_local_tolerances
         = [this]() -> BlockVectorType & { return absolute; };
       auto rhs = [this](const double           t,
@@ -451,25 +450,19 @@ namespace tissuefem::time
     {
       if (!stiffness->assembled())
         return;
-      if (every_iteration)
+      if (!every_iteration)
         {
-          VectorType u(x.block(0));
-          context->solid.apply_dirichlet_values(t, u);
-          stiffness->evaluate(context->solid, u, t);
-          ++jacobian_evaluations;
-          stiffness_fresh = true;
-          return;
+          long int steps = 0, failures = 0;
+          void    *memory = ode->get_arkode_memory();
+          ARKStepGetNumSteps(memory, &steps);
+          ARKStepGetNumNonlinSolvConvFails(memory, &failures);
+          if (stiffness_steps >= 0 && steps == stiffness_steps
+              && failures == stiffness_failures && t == stiffness_time)
+            return;
+          stiffness_steps    = steps;
+          stiffness_failures = failures;
+          stiffness_time     = t;
         }
-      long int steps = 0, failures = 0;
-      void    *memory = ode->get_arkode_memory();
-      ARKStepGetNumSteps(memory, &steps);
-      ARKStepGetNumNonlinSolvConvFails(memory, &failures);
-      if (stiffness_steps >= 0 && steps == stiffness_steps
-          && failures == stiffness_failures && t == stiffness_time)
-        return;
-      stiffness_steps    = steps;
-      stiffness_failures = failures;
-      stiffness_time     = t;
       VectorType u(x.block(0));
       context->solid.apply_dirichlet_values(t, u);
       stiffness->evaluate(context->solid, u, t);

@@ -61,12 +61,8 @@ namespace tissuefem::time
     {
       ImplicitOneStep::initialize(c, state);
       h = c.time.time_step;
-      if (!adaptive)
-        return;
-      c.solid.initialize_vector(free);
-      free = 1.;
-      c.solid.zero_constrained_entries(free);
-      have_acceleration = false;
+      if (adaptive)
+        set_up_error_control();
     }
 
     StepReport
@@ -134,12 +130,8 @@ namespace tissuefem::time
     void
     mesh_changed() override
     {
-      if (!adaptive)
-        return;
-      context->solid.initialize_vector(free);
-      free = 1.;
-      context->solid.zero_constrained_entries(free);
-      have_acceleration = false;
+      if (adaptive)
+        set_up_error_control();
     }
 
   protected:
@@ -175,6 +167,17 @@ namespace tissuefem::time
     }
 
   private:
+    /// The free-entry mask for the current constraints; the next error
+    /// estimate has no backward Euler acceleration yet.
+    void
+    set_up_error_control()
+    {
+      context->solid.initialize_vector(free);
+      free = 1.;
+      context->solid.zero_constrained_entries(free);
+      have_acceleration = false;
+    }
+
     bool            adaptive = false;
     ErrorTolerances tolerances;
     /// The step the error control proposes next.

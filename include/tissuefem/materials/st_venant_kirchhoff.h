@@ -4,6 +4,36 @@
 
 namespace tissuefem::materials
 {
+  /// S = 2 mu E + lambda tr(E) I, the isotropic part of St Venant-Kirchhoff
+  /// (also of Picinbono's transversely isotropic model).
+  template <int dim>
+  Tensor<2, dim>
+  st_venant_kirchhoff_stress(const double          lambda,
+                             const double          mu,
+                             const Tensor<2, dim> &E)
+  {
+    return (2. * mu) * E + (lambda * trace(E)) * unit_symmetric_tensor<dim>();
+  }
+
+  /// Adds F_iM F_kQ CC_MJLQ with CC = lambda I x I + 2 mu II to @p A:
+  /// lambda F_iJ F_kL + mu (F_iL F_kJ + (F F^T)_ik delta_JL).
+  template <int dim>
+  void
+  add_st_venant_kirchhoff_tangent(const double          lambda,
+                                  const double          mu,
+                                  const Tensor<2, dim> &F,
+                                  Tensor<4, dim>       &A)
+  {
+    const Tensor<2, dim> B = F * transpose(F);
+    for (unsigned int i = 0; i < dim; ++i)
+      for (unsigned int J = 0; J < dim; ++J)
+        for (unsigned int k = 0; k < dim; ++k)
+          for (unsigned int L = 0; L < dim; ++L)
+            A[i][J][k][L]
+              += lambda * F[i][J] * F[k][L]
+                 + mu * (F[i][L] * F[k][J] + (J == L ? B[i][k] : 0.));
+  }
+
   /**
    * St Venant-Kirchhoff: Psi = mu E : E + lambda/2 (tr E)^2 with the
    * Green-Lagrange strain E = (F^T F - I)/2. This is Picinbono's non-linear
@@ -51,7 +81,7 @@ namespace tissuefem::materials
     second_piola_kirchhoff(const Tensor<2, dim> &E,
                            const Tensor<1, dim> &) const
     {
-      return (2. * mu) * E + (lambda * trace(E)) * unit_symmetric_tensor<dim>();
+      return st_venant_kirchhoff_stress(lambda, mu, E);
     }
 
     /// F_iM F_kQ CC_MJLQ with CC = lambda I x I + 2 mu II: lambda F_iJ
@@ -61,14 +91,7 @@ namespace tissuefem::materials
                          const Tensor<1, dim> &,
                          Tensor<4, dim> &A) const
     {
-      const Tensor<2, dim> B = F * transpose(F);
-      for (unsigned int i = 0; i < dim; ++i)
-        for (unsigned int J = 0; J < dim; ++J)
-          for (unsigned int k = 0; k < dim; ++k)
-            for (unsigned int L = 0; L < dim; ++L)
-              A[i][J][k][L]
-                += lambda * F[i][J] * F[k][L]
-                   + mu * (F[i][L] * F[k][J] + (J == L ? B[i][k] : 0.));
+      add_st_venant_kirchhoff_tangent(lambda, mu, F, A);
     }
 
     bool

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <tissuefem/materials/energy_material.h>
+#include <tissuefem/materials/st_venant_kirchhoff.h>
 
 namespace tissuefem::materials
 {
@@ -54,7 +55,7 @@ namespace tissuefem::materials
     second_piola_kirchhoff(const Tensor<2, dim> &E,
                            const Tensor<1, dim> &a) const
     {
-      return (2. * mu) * E + (lambda * trace(E)) * unit_symmetric_tensor<dim>()
+      return st_venant_kirchhoff_stress(lambda, mu, E)
              + (2. * fibre_coefficient * (a * (E * a))) * outer_product(a, a);
     }
 
@@ -66,16 +67,14 @@ namespace tissuefem::materials
                          const Tensor<1, dim> &a,
                          Tensor<4, dim>       &A) const
     {
-      const Tensor<2, dim> B  = F * transpose(F);
+      add_st_venant_kirchhoff_tangent(lambda, mu, F, A);
       const Tensor<1, dim> Fa = F * a;
       for (unsigned int i = 0; i < dim; ++i)
         for (unsigned int J = 0; J < dim; ++J)
           for (unsigned int k = 0; k < dim; ++k)
             for (unsigned int L = 0; L < dim; ++L)
               A[i][J][k][L]
-                += lambda * F[i][J] * F[k][L]
-                   + mu * (F[i][L] * F[k][J] + (J == L ? B[i][k] : 0.))
-                   + 2. * fibre_coefficient * Fa[i] * a[J] * Fa[k] * a[L];
+                += 2. * fibre_coefficient * Fa[i] * a[J] * Fa[k] * a[L];
     }
 
     bool
