@@ -3,6 +3,7 @@
 #include <tissuefem/adaptation/mesh_adaptation.h>
 #include <tissuefem/base/application.h>
 #include <tissuefem/base/input_error.h>
+#include <tissuefem/base/interruption.h>
 #include <tissuefem/base/parallel.h>
 #include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/boundary/boundary_conditions.h>
@@ -155,9 +156,16 @@ namespace tissuefem
            "Options for runs:\n"
            "  --threads N   use at most N threads per process (default: all\n"
            "                cores of the machine shared among the processes)\n"
+           "  --restart DIR continue the run from the checkpoint in DIR (see\n"
+           "                'Output/Checkpoint interval'); with the same\n"
+           "                FILE.prm and process count the outputs equal\n"
+           "                those of an uninterrupted run\n"
+           "SIGINT and SIGTERM end a run after the current step, with its\n"
+           "outputs and a checkpoint written.\n"
            "Parallel runs: mpirun -np P tissuefem FILE.prm\n"
            "Exit status: 0 on success, 2 for bad input, 3 when the solver\n"
-           "fails, 4 for any other error.\n";
+           "fails, 4 for any other error, 128 + N after signal N (130 for\n"
+           "SIGINT, 143 for SIGTERM).\n";
     }
   } // namespace
 
@@ -170,6 +178,7 @@ namespace tissuefem
     std::string              file;
     bool                     validate_only  = false;
     bool                     check_material = false;
+    std::string              restart;
     try
       {
         for (unsigned int i = 0; i < args.size(); ++i)
@@ -205,6 +214,13 @@ namespace tissuefem
                   throw InputError("--threads '" + n
                                    + "': expected a number >= 1");
                 MultithreadInfo::set_thread_limit(std::stoi(n));
+                continue;
+              }
+            if (a == "--restart")
+              {
+                if (i + 1 == args.size())
+                  throw InputError("--restart needs a checkpoint directory");
+                restart = args[++i];
                 continue;
               }
             if (a == "--validate")
@@ -248,6 +264,7 @@ namespace tissuefem
         problems::RunContext context;
         context.parameter_directory
           = std::filesystem::path(file).parent_path().string();
+        context.restart_directory = restart;
         auto problem
           = problems::ProblemRegistry::instance().create(prm.get("Problem"),
                                                          prm,
@@ -263,8 +280,14 @@ namespace tissuefem
           << "tissuefem: " << parallel_tools::n_processes()
           << " MPI process(es), " << MultithreadInfo::n_threads()
           << " thread(s) each" << std::endl;
+        install_interruption_handlers();
         problem->run();
         return 0;
+      }
+    catch (const Interrupted &e)
+      {
+        report_error("tissuefem: interrupted: " + std::string(e.what()));
+        return 128 + e.signal;
       }
     // Every process meets the same errors (all check the same input and
     // take part in the same collective operations); process 0 reports.

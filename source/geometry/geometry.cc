@@ -6,6 +6,7 @@
 #include <tissuefem/base/input_error.h>
 #include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/geometry/geometry.h>
+#include <tissuefem/geometry/mesh_check.h>
 #include <tissuefem/geometry/vtu_reader.h>
 
 #include <filesystem>
@@ -45,6 +46,17 @@ namespace tissuefem::geometry
                         Patterns::List(Patterns::Integer(1, 10000)),
                         "For 'box': cells per direction before refinement "
                         "(only the first Dimension values are read).");
+      prm.declare_entry(
+        "Corners",
+        "",
+        Patterns::Anything(),
+        "For 'box': empty, or the 2^Dimension corners of a general "
+        "quadrilateral or hexahedron, 'x, y[, z]' separated by ';', in "
+        "deal.II's vertex order (x runs fastest, then y, then z): the "
+        "subdivided box is mapped onto it by the multilinear map of the "
+        "corners, and its faces keep the box's ids (0/1: the faces that were "
+        "x = lower/upper, 2/3: y, 4/5: z). Cook's membrane is '0, 0; 48, 44; "
+        "0, 44; 48, 60'.");
       prm.declare_entry("Mesh file",
                         "",
                         Patterns::Anything(),
@@ -100,6 +112,7 @@ namespace tissuefem::geometry
     lower_corner           = prm.get("Lower corner");
     upper_corner           = prm.get("Upper corner");
     subdivisions           = prm.get("Subdivisions");
+    corners                = prm.get("Corners");
     mesh_file              = prm.get("Mesh file");
     scale                  = prm.get_double("Scale");
     global_refinements     = prm.get_integer("Global refinements");
@@ -121,6 +134,47 @@ namespace tissuefem::geometry
 
   namespace
   {
+    /// Maps the box [lower, upper] onto the cell spanned by 'Corners' with
+    /// the multilinear map of deal.II's reference cell.
+    template <int dim>
+    void
+    map_onto_corners(const GeometryParameters &parameters,
+                     const Point<dim>         &lower,
+                     const Point<dim>         &upper,
+                     Triangulation<dim>       &triangulation)
+    {
+      const std::string             parameter = "Geometry/Corners";
+      const std::vector<Point<dim>> corners
+        = parse_points<dim>(parameters.corners, parameter);
+      require(corners.size() == (1u << dim),
+              parameter,
+              "needs " + std::to_string(1u << dim) + " points separated by "
+                + "';', got " + std::to_string(corners.size()));
+      const auto map = [&](const Point<dim> &x) {
+        Point<dim> result;
+        for (unsigned int v = 0; v < corners.size(); ++v)
+          {
+            double weight = 1;
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                const double xi = (x[d] - lower[d]) / (upper[d] - lower[d]);
+                weight *= (v >> d) & 1 ? xi : 1 - xi;
+              }
+            result += weight * corners[v];
+          }
+        return result;
+      };
+      GridTools::transform(map, triangulation);
+      for (const auto &cell : triangulation.active_cell_iterators())
+        if (cell->measure() <= 0)
+          throw InputError(
+            "Parameter 'Geometry/Corners': mapped cell "
+            + std::to_string(cell->active_cell_index())
+            + " has no positive volume (list the corners in deal.II's vertex "
+              "order: x fastest, then y, then z)");
+    }
+
+
     template <int dim>
     void
     build_box(const GeometryParameters &parameters,
@@ -173,6 +227,8 @@ namespace tissuefem::geometry
           for (const auto &cell : triangulation.active_cell_iterators())
             cell->set_material_id(0);
         }
+      if (!Utilities::trim(parameters.corners).empty())
+        map_onto_corners(parameters, lower, upper, triangulation);
     }
 
 
@@ -202,6 +258,7 @@ namespace tissuefem::geometry
               "Geometry/Mesh file",
               "'" + file + "' holds no cells of dimension "
                 + std::to_string(dim));
+      check_mesh(triangulation, file);
       if (parameters.scale != 1.)
         GridTools::scale(parameters.scale, triangulation);
     }
@@ -268,6 +325,26 @@ namespace tissuefem::geometry
                 face->set_boundary_id(id);
         }
     }
+
+    /// Material ids from predicates on the cell centres; later entries win.
+    template <int dim>
+    void
+    apply_material_predicates(const std::string  &text,
+                              Triangulation<dim> &triangulation)
+    {
+      const std::string parameter = "Geometry/Material id predicates";
+      for (const auto &[id, expression] : parse_id_entries(text, parameter))
+        {
+          require(id < numbers::invalid_material_id,
+                  parameter,
+                  "material ids must be below "
+                    + std::to_string(int(numbers::invalid_material_id)));
+          const auto predicate = make_function<dim>(expression, 1, parameter);
+          for (const auto &cell : triangulation.active_cell_iterators())
+            if (predicate->value(cell->center()) != 0)
+              cell->set_material_id(id);
+        }
+    }
   } // namespace
 
 
@@ -284,6 +361,7 @@ namespace tissuefem::geometry
     apply_boundary_predicates(parameters.boundary_id_predicates,
                               parameters.source == "file",
                               triangulation);
+    apply_material_predicates(parameters.material_id_predicates, triangulation);
   }
 
 

@@ -3,6 +3,7 @@
 #include <deal.II/grid/tria_description.h>
 
 #include <tissuefem/base/input_error.h>
+#include <tissuefem/base/parallel.h>
 #include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/geometry/vtu_reader.h>
 
@@ -341,6 +342,7 @@ namespace tissuefem::geometry
 
       // deal.II needs positive Jacobians, which meshing tools do not always
       // produce; swapping two vertices turns a simplex inside out.
+      unsigned int n_reoriented = 0;
       for (std::size_t c = 0; c < cells.size() && n_cubes == 0; ++c)
         {
           std::vector<unsigned int> &v = cells[c].vertices;
@@ -356,8 +358,17 @@ namespace tissuefem::geometry
             s.fail("cell " + std::to_string(c)
                    + " is degenerate (zero volume)");
           if (measure < 0)
-            std::swap(v[1], v[2]);
+            {
+              std::swap(v[1], v[2]);
+              ++n_reoriented;
+            }
         }
+      if (n_reoriented > 0)
+        parallel_tools::screen()
+          << "Mesh file '" << file_name << "': " << n_reoriented
+          << " cells had their vertices in inverted order and were "
+             "reoriented (a safe repair: the cell is the same)."
+          << std::endl;
       // deal.II's ids belong to boundary faces; a file may also tag faces
       // between cells (e.g. material interfaces), which it cannot hold.
       std::map<std::vector<unsigned int>, unsigned int> n_adjacent;

@@ -112,10 +112,28 @@ namespace tissuefem::materials
         "length at every quadrature point, and must not vanish there. Written "
         "to the VTU output as the cell fields fibre_x, fibre_y, fibre_z.");
       prm.declare_entry(
+        "Tangent projection",
+        "none",
+        Patterns::Selection("none|positive definite"),
+        "'positive definite': at every quadrature point the tangent dP/dF "
+        "(a symmetric d^2 x d^2 matrix for an energy) has its eigenvalues "
+        "raised to at least 1e-6 times the largest magnitude, so that the "
+        "stiffness is positive semi-definite on any state, inverted or "
+        "beyond a limit point, and Newton's updates descend the energy. "
+        "Newton converges more slowly (linearly) where the exact tangent is "
+        "indefinite. 'none': the exact tangent.");
+      prm.declare_entry(
         "Formulation",
         "displacement",
-        Patterns::Selection("displacement|edge length"),
-        "'displacement': P(F) at quadrature points; 'edge length': Jeffrey's "
+        Patterns::Selection("displacement|mean dilatation|edge length"),
+        "'displacement': P(F) at quadrature points; 'mean dilatation': the "
+        "F-bar form of the three-field Q1-P0 element (Simo, Taylor and "
+        "Pister 1985; de Souza Neto et al. 1996): Psi is evaluated at Fbar = "
+        "(theta/J)^(1/d) F with theta the cell mean of J, which removes "
+        "volumetric locking of nearly incompressible materials on "
+        "quadrilaterals/hexahedra (Q1-P0, Q2-P0) and on P2 "
+        "triangles/tetrahedra (P2-P0); it changes nothing on P1 simplices "
+        "(constant F), where it is refused; 'edge length': Jeffrey's "
         "form (eqs 19-31), the element energy written through the squared "
         "edge lengths of linear simplices (P1 triangles/tetrahedra only, "
         "models written in C = F^T F: St Venant-Kirchhoff and the "
@@ -139,9 +157,11 @@ namespace tissuefem::materials
         values.resize(n, values[0]);
       require(values.size() == n,
               "Materials/" + name,
-              "expected 1 or " + std::to_string(n)
-                + " values (one per "
-                  "material id), got "
+              (n == 1 ? std::string("expected 1 value (one per entry of "
+                                    "'Materials/Material ids', which is "
+                                    "empty), got ")
+                      : "expected 1 or " + std::to_string(n)
+                          + " values (one per material id), got ")
                 + std::to_string(values.size()));
       return values;
     }
@@ -206,9 +226,11 @@ namespace tissuefem::materials
               ElasticConstants::from_young_poisson(E[i], nu[i]));
           }
       }
-    tangent_method          = parse_tangent_method(prm.get("Tangent"));
-    fibre_direction         = prm.get("Fibre direction");
-    edge_length_formulation = prm.get("Formulation") == "edge length";
+    tangent_method              = parse_tangent_method(prm.get("Tangent"));
+    fibre_direction             = prm.get("Fibre direction");
+    edge_length_formulation     = prm.get("Formulation") == "edge length";
+    mean_dilatation_formulation = prm.get("Formulation") == "mean dilatation";
+    project_tangent = prm.get("Tangent projection") == "positive definite";
     prm.leave_subsection();
   }
 
@@ -222,6 +244,8 @@ namespace tissuefem::materials
           dim,
           "Materials/Fibre direction"))
       , edge_length(parameters.edge_length_formulation)
+      , mean_dilatation(parameters.mean_dilatation_formulation)
+      , project(parameters.project_tangent)
   {
     for (unsigned int i = 0; i < parameters.model_names.size(); ++i)
       {

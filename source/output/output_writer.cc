@@ -66,6 +66,17 @@ namespace tissuefem::output
                       "1",
                       Patterns::Integer(1),
                       "Steps between rows of the summary file.");
+    prm.declare_entry(
+      "Checkpoint interval",
+      "0",
+      Patterns::Integer(0),
+      "Steps between checkpoints written to '<Directory>/checkpoint' "
+      "(atomically: a new one replaces the old one whole); 0: only when the "
+      "run is interrupted by SIGINT or SIGTERM. 'tissuefem FILE.prm "
+      "--restart <Directory>/checkpoint' continues the run; its outputs are "
+      "then those of an uninterrupted run, bit for bit (same FILE.prm and "
+      "process count; quasistatic, backward Euler, and damped central "
+      "difference without active region; no tool or mesh adaptation).");
     prm.leave_subsection();
   }
 
@@ -74,12 +85,13 @@ namespace tissuefem::output
   OutputParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Output");
-    directory         = prm.get("Directory");
-    vtu_interval      = prm.get_integer("VTU interval");
-    probe_points      = prm.get("Probe points");
-    summary_file      = prm.get("Summary file");
-    summary_interval  = prm.get_integer("Summary interval");
-    report_rest_shape = prm.get_bool("Report rest shape");
+    directory           = prm.get("Directory");
+    vtu_interval        = prm.get_integer("VTU interval");
+    probe_points        = prm.get("Probe points");
+    summary_file        = prm.get("Summary file");
+    summary_interval    = prm.get_integer("Summary interval");
+    report_rest_shape   = prm.get_bool("Report rest shape");
+    checkpoint_interval = prm.get_integer("Checkpoint interval");
     reaction_boundary_ids.clear();
     for (const auto &id :
          Utilities::split_string_list(prm.get("Reaction boundary ids")))
@@ -191,6 +203,79 @@ namespace tissuefem::output
     error = Utilities::MPI::broadcast(parallel_tools::communicator(), error);
     if (!error.empty())
       throw InputError(error);
+  }
+
+
+  template <int dim>
+  void
+  OutputWriter<dim>::fill_checkpoint(Checkpoint &checkpoint)
+  {
+    checkpoint.damping_work = damping_work_sum;
+    checkpoint.pvd_records  = pvd_records;
+    if (!parallel_tools::is_root())
+      return;
+    for (auto *stream :
+         {&statistics_file, &probes_file, &reactions_file, &summary})
+      if (stream->is_open())
+        stream->flush();
+    for (const std::string &file : files())
+      checkpoint.file_sizes[file] = std::filesystem::file_size(file);
+  }
+
+
+  template <int dim>
+  void
+  OutputWriter<dim>::resume(const Checkpoint &checkpoint)
+  {
+    damping_work_sum = checkpoint.damping_work;
+    pvd_records      = checkpoint.pvd_records;
+    std::string error;
+    if (parallel_tools::is_root())
+      for (const std::string &file : files())
+        {
+          const auto      found = checkpoint.file_sizes.find(file);
+          std::error_code code;
+          if (found == checkpoint.file_sizes.end())
+            error = "'" + file
+                    + "' is not among the checkpoint's files "
+                      "(another Output section?)";
+          else if (std::filesystem::file_size(file, code) < found->second
+                   || code)
+            error = "'" + file + "' is shorter than at the checkpoint";
+          else
+            std::filesystem::resize_file(file, found->second);
+        }
+    error = Utilities::MPI::broadcast(parallel_tools::communicator(), error);
+    if (!error.empty())
+      throw InputError("--restart: " + error);
+    if (!parallel_tools::is_root())
+      return;
+    const auto append = std::ios::out | std::ios::app;
+    statistics_file.open(parameters.directory + "/statistics.csv", append);
+    probes_file.open(parameters.directory + "/probes.csv", append);
+    if (!parameters.reaction_boundary_ids.empty())
+      reactions_file.open(parameters.directory + "/reactions.csv", append);
+    for (auto *stream : {&statistics_file, &probes_file, &reactions_file})
+      *stream << std::setprecision(10);
+    if (!parameters.summary_file.empty())
+      {
+        summary.open(parameters.summary_file, append);
+        summary << std::setprecision(8);
+      }
+  }
+
+
+  template <int dim>
+  std::vector<std::string>
+  OutputWriter<dim>::files() const
+  {
+    std::vector<std::string> names = {parameters.directory + "/statistics.csv",
+                                      parameters.directory + "/probes.csv"};
+    if (!parameters.reaction_boundary_ids.empty())
+      names.push_back(parameters.directory + "/reactions.csv");
+    if (!parameters.summary_file.empty())
+      names.push_back(parameters.summary_file);
+    return names;
   }
 
 

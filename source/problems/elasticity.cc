@@ -1,5 +1,6 @@
 #include <deal.II/base/timer.h>
 
+#include <tissuefem/base/interruption.h>
 #include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/problems/elasticity.h>
 #include <tissuefem/solid/quantities.h>
@@ -16,6 +17,7 @@ namespace tissuefem::problems
   template <int dim>
   Elasticity<dim>::Elasticity(ParameterHandler &prm, const RunContext &context)
       : prm(prm)
+      , run_context(context)
       , triangulation(parallel_tools::communicator(),
                       Triangulation<dim>::limit_level_difference_at_vertices,
                       /*allow_artificial_cells=*/false,
@@ -135,6 +137,51 @@ namespace tissuefem::problems
 
 
   template <int dim>
+  std::string
+  Elasticity<dim>::checkpoint_obstacle() const
+  {
+    if (!integrator->checkpointable())
+      return "integrator '" + time_parameters.integrator
+             + "' cannot be checkpointed (with these settings)";
+    if (tool)
+      return "a scene with a tool cannot be checkpointed";
+    if (refinement_parameters.indicator != "none")
+      return "a scene with mesh refinement cannot be checkpointed";
+    return {};
+  }
+
+
+  template <int dim>
+  std::vector<VectorType *>
+  Elasticity<dim>::checkpoint_vectors(time::State &state)
+  {
+    std::vector<VectorType *> vectors = {&state.u, &state.v, &state.a};
+    for (VectorType *v : integrator->history())
+      vectors.push_back(v);
+    return vectors;
+  }
+
+
+  template <int dim>
+  void
+  Elasticity<dim>::write_checkpoint(const unsigned int step, time::State &state)
+  {
+    output::Checkpoint checkpoint;
+    checkpoint.step               = step;
+    checkpoint.time               = state.time;
+    checkpoint.n_processes        = parallel_tools::n_processes();
+    checkpoint.n_dofs             = solid->n_dofs();
+    checkpoint.integrator         = time_parameters.integrator;
+    checkpoint.integrator_scalars = integrator->checkpoint_scalars();
+    writer->fill_checkpoint(checkpoint);
+    const auto vectors = checkpoint_vectors(state);
+    output::write_checkpoint(output_parameters.directory + "/checkpoint",
+                             checkpoint,
+                             {vectors.begin(), vectors.end()});
+  }
+
+
+  template <int dim>
   void
   Elasticity<dim>::give_near_null_space()
   {
@@ -215,7 +262,37 @@ namespace tissuefem::problems
     solid->apply_dirichlet_values(0., state.u);
     move_tool(state, false);
     integrator->initialize(context, state);
-    writer->open();
+    const std::string why_no_checkpoint = checkpoint_obstacle();
+    const bool        restart = !run_context.restart_directory.empty();
+    if ((restart || output_parameters.checkpoint_interval > 0)
+        && !why_no_checkpoint.empty())
+      throw InputError(std::string(restart ? "--restart"
+                                           : "Parameter 'Output/Checkpoint "
+                                             "interval'")
+                       + ": " + why_no_checkpoint);
+    unsigned int step = 0;
+    if (restart)
+      {
+        const auto checkpoint
+          = output::read_checkpoint(run_context.restart_directory,
+                                    checkpoint_vectors(state));
+        require(checkpoint.integrator == time_parameters.integrator
+                  && checkpoint.n_dofs == solid->n_dofs(),
+                "--restart",
+                "the checkpoint was written by a run with integrator '"
+                  + checkpoint.integrator + "' and "
+                  + std::to_string(checkpoint.n_dofs)
+                  + " unknowns; this scene has '" + time_parameters.integrator
+                  + "' and " + std::to_string(solid->n_dofs()));
+        state.time = checkpoint.time;
+        step       = checkpoint.step;
+        integrator->restore_scalars(checkpoint.integrator_scalars);
+        writer->resume(checkpoint);
+        screen << "tissuefem: continuing from the checkpoint at step " << step
+               << ", t = " << state.time << std::endl;
+      }
+    else
+      writer->open();
     if (tool)
       tool->open(output_parameters.directory);
 
@@ -226,24 +303,25 @@ namespace tissuefem::problems
            << "', linear solver '" << linear_solver_parameters.type << "'"
            << "\n"
            << geometry::describe_boundary_ids(triangulation) << std::endl;
-    std::ostringstream header;
-    header << "cells " << triangulation.n_active_cells() << " unknowns "
-           << solid->n_dofs();
-    writer->summary_line(header.str());
-
     TimerOutput timer(screen, TimerOutput::summary, TimerOutput::wall_times);
     const auto &reaction_ids = output_parameters.reaction_boundary_ids;
-    writer->write_step(
-      0,
-      time::StepReport(),
-      state,
-      solid->reaction_forces(state.u, state.a, state.time, reaction_ids));
-    if (tool)
-      summarize_tool(state.time, tool->record(state, *solid));
+    if (!restart)
+      {
+        std::ostringstream header;
+        header << "cells " << triangulation.n_active_cells() << " unknowns "
+               << solid->n_dofs();
+        writer->summary_line(header.str());
+        writer->write_step(
+          0,
+          time::StepReport(),
+          state,
+          solid->reaction_forces(state.u, state.a, state.time, reaction_ids));
+        if (tool)
+          summarize_tool(state.time, tool->record(state, *solid));
+      }
 
     const double        end_time = time_parameters.end_time;
     std::vector<double> step_seconds;
-    unsigned int        step         = 0;
     bool                mesh_changed = false;
     while (state.time < end_time * (1 - 1e-12))
       {
@@ -282,6 +360,25 @@ namespace tissuefem::problems
         writer->write_step(step, report, state, reactions, mesh_changed);
         if (tool)
           summarize_tool(state.time, tool->record(state, *solid));
+        const unsigned int interval = output_parameters.checkpoint_interval;
+        if (interval > 0 && step % interval == 0)
+          write_checkpoint(step, state);
+        if (const int signal = interruption_requested())
+          {
+            std::string what = "signal " + std::to_string(signal)
+                               + " after step " + std::to_string(step)
+                               + ", t = " + std::to_string(state.time)
+                               + "; outputs written up to there";
+            if (why_no_checkpoint.empty())
+              {
+                write_checkpoint(step, state);
+                what += "; continue with --restart "
+                        + output_parameters.directory + "/checkpoint";
+              }
+            else
+              what += "; no checkpoint (" + why_no_checkpoint + ")";
+            throw Interrupted(signal, what);
+          }
         // The state just written is an equilibrium (or solution) on its
         // mesh; the next step starts on the adapted one.
         if (state.time < end_time * (1 - 1e-12))

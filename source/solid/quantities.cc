@@ -1,6 +1,7 @@
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/lac/lapack_full_matrix.h>
 
+#include <tissuefem/solid/mean_dilatation.h>
 #include <tissuefem/solid/quantities.h>
 
 #include <limits>
@@ -10,12 +11,14 @@ namespace tissuefem::solid
   namespace
   {
     /// Calls @p f(cell, q, F, JxW) at every quadrature point of the locally
-    /// owned cells.
+    /// owned cells; with @p f_bar, F is the mean dilatation's Fbar (the
+    /// plain F in cells with some det F <= 0).
     template <int dim, typename Callback>
     void
     for_each_deformation_gradient(const Discretization<dim> &discretization,
                                   const VectorType          &u,
-                                  const Callback            &f)
+                                  const Callback            &f,
+                                  const bool                 f_bar = false)
     {
       FEValues<dim>                    fe_values(*discretization.mapping,
                               *discretization.fe,
@@ -23,6 +26,8 @@ namespace tissuefem::solid
                               update_gradients | update_JxW_values);
       const FEValuesExtractors::Vector displacement(0);
       std::vector<Tensor<2, dim>> grad_u(discretization.cell_quadrature.size());
+      std::vector<Tensor<2, dim>> F(grad_u.size());
+      std::vector<double>         JxW(grad_u.size());
       for (const auto &cell :
            discretization.dof_handler.active_cell_iterators())
         if (cell->is_locally_owned())
@@ -30,10 +35,14 @@ namespace tissuefem::solid
             fe_values.reinit(cell);
             fe_values[displacement].get_function_gradients(u, grad_u);
             for (const unsigned int q : fe_values.quadrature_point_indices())
-              f(cell,
-                q,
-                unit_symmetric_tensor<dim>() + grad_u[q],
-                fe_values.JxW(q));
+              {
+                F[q]   = unit_symmetric_tensor<dim>() + grad_u[q];
+                JxW[q] = fe_values.JxW(q);
+              }
+            if (f_bar)
+              apply_mean_dilatation(F, JxW.data(), F.size());
+            for (const unsigned int q : fe_values.quadrature_point_indices())
+              f(cell, q, F[q], JxW[q]);
           }
     }
   } // namespace
@@ -55,7 +64,8 @@ namespace tissuefem::solid
         energy += materials.material(cell->material_id())
                     .energy_density(F, fibres.at(cell->active_cell_index(), q))
                   * JxW;
-      });
+      },
+      materials.mean_dilatation_formulation());
     return Utilities::MPI::sum(energy, parallel_tools::communicator());
   }
 
@@ -95,7 +105,8 @@ namespace tissuefem::solid
           += (dim == 1 ? std::abs(sigma[0][0])
                        : std::sqrt(1.5 * scalar_product(deviator, deviator)))
              / n_q;
-      });
+      },
+      materials.mean_dilatation_formulation());
   }
 
 

@@ -5,7 +5,10 @@
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 #include <deal.II/numerics/vector_tools.h>
 
+#include <tissuefem/materials/kinematics.h>
+#include <tissuefem/materials/tangent_projection.h>
 #include <tissuefem/solid/edge_length_element.h>
+#include <tissuefem/solid/mean_dilatation.h>
 #include <tissuefem/solid/quantities.h>
 #include <tissuefem/solid/solid.h>
 
@@ -33,6 +36,7 @@ namespace tissuefem::solid
           , body_force(dim)
           , traction(dim)
       {
+        resize(discretization.cell_quadrature.size());
         if (faces)
           face_values = std::make_unique<FEFaceValues<dim>>(
             *discretization.mapping,
@@ -49,6 +53,7 @@ namespace tissuefem::solid
           , body_force(dim)
           , traction(dim)
       {
+        resize(other.F.size());
         if (other.face_values)
           face_values = std::make_unique<FEFaceValues<dim>>(
             other.face_values->get_mapping(),
@@ -57,7 +62,24 @@ namespace tissuefem::solid
             other.face_values->get_update_flags());
       }
 
-      std::vector<Tensor<1, dim>>        U, W;
+      void
+      resize(const unsigned int n_q)
+      {
+        F.resize(n_q);
+        P.resize(n_q);
+        A.resize(n_q);
+        b.resize(U.size());
+        C.resize(U.size());
+      }
+
+      std::vector<Tensor<1, dim>> U, W;
+      /// Mean dilatation: per-point deformation gradients, effective
+      /// stresses and tangents, and per shape function dtheta/du (b) and
+      /// sum_q w_q phi_Ftheta g (C); see mean_dilatation.h.
+      std::vector<Tensor<2, dim>>        F, P;
+      std::vector<Tensor<4, dim>>        A;
+      std::vector<Tensor<1, dim>>        b, C;
+      double                             Theta = 0;
       std::vector<Point<dim>>            vertices;
       std::vector<Tensor<1, dim>>        gradients;
       Vector<double>                     body_force, traction;
@@ -100,6 +122,12 @@ namespace tissuefem::solid
               "Materials/Formulation",
               "'edge length' needs linear simplices (Geometry/Cell type = "
               "simplex or a simplex mesh file, Polynomial degree = 1)");
+    if (materials.mean_dilatation_formulation())
+      require(!(discretization.simplex && discretization.fe->degree == 1),
+              "Materials/Formulation",
+              "'mean dilatation' changes nothing on linear simplices (their F "
+              "is constant per cell); use Polynomial degree = 2 (the P2-P0 "
+              "element) or a hexahedral mesh");
     setup();
   }
 
@@ -216,6 +244,83 @@ namespace tissuefem::solid
 
 
   template <int dim>
+  template <typename ScratchType, typename CopyType>
+  void
+  Solid<dim>::mean_dilatation_cell(const materials::Interface<dim> &material,
+                                   const unsigned int               c,
+                                   const unsigned int               cell_index,
+                                   const bool                       jacobian,
+                                   ScratchType                     &s,
+                                   CopyType                        &copy) const
+  {
+    const unsigned int n_q = cache.n_q, n_scalar = cache.n_scalar;
+    const double      *JxW = cache.JxW(c);
+    for (unsigned int q = 0; q < n_q; ++q)
+      {
+        s.F[q] = unit_symmetric_tensor<dim>();
+        for (unsigned int k = 0; k < n_scalar; ++k)
+          s.F[q] += outer_product(s.U[k], cache.gradient(c, q, k));
+      }
+    const double theta = solid::mean_dilatation(s.F, JxW, n_q);
+    if (theta <= 0)
+      {
+        copy.inverted_det = theta;
+        return;
+      }
+    const auto method = materials.tangent_method();
+    double     volume = 0, Phi_theta = 0;
+    s.Theta = 0;
+    for (unsigned int k = 0; k < n_scalar; ++k)
+      s.b[k] = s.C[k] = Tensor<1, dim>();
+    MeanDilatationPoint<dim> point;
+    Tensor<2, dim>           P_bar;
+    Tensor<4, dim>           A_bar;
+    for (unsigned int q = 0; q < n_q; ++q)
+      {
+        const Tensor<2, dim> F_bar
+          = modified_deformation_gradient(s.F[q], theta);
+        const Tensor<1, dim> &a = fibre_field.at(cell_index, q);
+        if (jacobian)
+          {
+            material.stress_and_tangent(F_bar, a, P_bar, A_bar, method);
+            if (materials.project_tangent())
+              materials::project_to_positive_definite(A_bar);
+            mean_dilatation_stress_and_tangent(
+              s.F[q], theta, P_bar, A_bar, point);
+            s.A[q] = point.phi_FF;
+            s.Theta += JxW[q] * point.phi_theta_theta;
+            const Tensor<2, dim> cof = cofactor(s.F[q]);
+            for (unsigned int k = 0; k < n_scalar; ++k)
+              {
+                const Tensor<1, dim> &g = cache.gradient(c, q, k);
+                s.C[k] += JxW[q] * (point.phi_F_theta * g);
+                s.b[k] += JxW[q] * (cof * g);
+              }
+          }
+        else
+          mean_dilatation_stress(s.F[q],
+                                 theta,
+                                 material.stress(F_bar, a),
+                                 point);
+        s.P[q] = point.phi_F;
+        Phi_theta += JxW[q] * point.phi_theta;
+        volume += JxW[q];
+      }
+    for (unsigned int k = 0; k < n_scalar; ++k)
+      s.b[k] /= volume;
+    // The pressure-like term Phi_theta/V couples every point through
+    // theta: its first derivative is cof F_q, its second dcof/dF.
+    const double pressure = Phi_theta / volume;
+    for (unsigned int q = 0; q < n_q; ++q)
+      {
+        s.P[q] += pressure * cofactor(s.F[q]);
+        if (jacobian)
+          materials::add_cofactor_derivative(s.F[q], pressure, s.A[q]);
+      }
+  }
+
+
+  template <int dim>
   void
   Solid<dim>::assemble(const Request &request, VectorType &residual)
   {
@@ -225,7 +330,9 @@ namespace tissuefem::solid
     const auto        &fe          = *discretization.fe;
     const auto         method      = materials.tangent_method();
     const bool         edge_length = materials.edge_length_formulation();
-    const bool         neumann
+    const bool mean_dilatation     = materials.mean_dilatation_formulation();
+    const bool project             = materials.project_tangent();
+    const bool neumann
       = request.external && !boundary_conditions.neumann.empty();
     const AffineConstraints<double> &rows = *request.rows;
 
@@ -274,13 +381,24 @@ namespace tissuefem::solid
       const double rho           = materials.density(cell->material_id());
       const bool   elastic       = request.internal && !edge_length;
       const double mass_jacobian = request.mass_jacobian_coefficient * rho;
+      if (elastic && mean_dilatation)
+        mean_dilatation_cell(
+          material, c, copy.cell_index, request.jacobian, s, copy);
 
       Tensor<2, dim> P;
       Tensor<4, dim> A;
       Tensor<3, dim> B;
       for (unsigned int q = 0; q < n_q; ++q)
         {
-          if (request.internal)
+          if (elastic && mean_dilatation)
+            {
+              if (copy.inverted_det <= 0)
+                continue;
+              P = s.P[q];
+              if (request.jacobian)
+                A = s.A[q];
+            }
+          else if (request.internal)
             {
               Tensor<2, dim> F = unit_symmetric_tensor<dim>();
               for (unsigned int k = 0; k < n_scalar; ++k)
@@ -295,7 +413,11 @@ namespace tissuefem::solid
               if (elastic)
                 {
                   if (request.jacobian)
-                    material.stress_and_tangent(F, a, P, A, method);
+                    {
+                      material.stress_and_tangent(F, a, P, A, method);
+                      if (project)
+                        materials::project_to_positive_definite(A);
+                    }
                   else
                     P = material.stress(F, a);
                 }
@@ -362,6 +484,23 @@ namespace tissuefem::solid
                 }
             }
         }
+
+      if (elastic && mean_dilatation && request.jacobian
+          && copy.inverted_det > 0)
+        for (unsigned int k = 0; k < n_scalar; ++k)
+          for (unsigned int a = 0; a < dim; ++a)
+            {
+              const unsigned int i = cache.local_index[k * dim + a];
+              for (unsigned int l = 0; l < n_scalar; ++l)
+                for (unsigned int b = 0; b < dim; ++b)
+                  {
+                    const unsigned int j = cache.local_index[l * dim + b];
+                    if (j >= i)
+                      copy.matrix(i, j) += s.C[k][a] * s.b[l][b]
+                                           + s.b[k][a] * s.C[l][b]
+                                           + s.Theta * s.b[k][a] * s.b[l][b];
+                  }
+            }
 
       if (request.internal && edge_length && copy.inverted_det > 0)
         {

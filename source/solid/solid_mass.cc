@@ -4,8 +4,11 @@
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 
+#include <tissuefem/solid/mean_dilatation.h>
 #include <tissuefem/solid/quantities.h>
 #include <tissuefem/solid/solid.h>
+
+#include <limits>
 
 namespace tissuefem::solid
 {
@@ -90,6 +93,35 @@ namespace tissuefem::solid
 
   template <int dim>
   double
+  Solid<dim>::implicit_energy(const VectorType &u,
+                              const VectorType &u_tilde,
+                              const double      mass_coefficient,
+                              const double      time)
+  {
+    double energy = stored_energy(u);
+    if (!std::isfinite(energy))
+      return energy;
+    // Dead loads: the external work is f_ext . u, with hanging-node values
+    // following their parents as in the stored energy.
+    VectorType force, x(u);
+    if (discretization.has_hanging_nodes)
+      discretization.hanging_node_constraints.distribute(x);
+    external_force(time, force);
+    energy -= force * x;
+    if (mass_coefficient != 0)
+      {
+        // As the residual's inertial term M w, w = c (u - u_tilde).
+        VectorType difference(u), product(u);
+        difference -= u_tilde;
+        mass_matrix().vmult(product, difference);
+        energy += 0.5 * mass_coefficient * (product * difference);
+      }
+    return energy;
+  }
+
+
+  template <int dim>
+  double
   Solid<dim>::stored_energy(const VectorType &u) const
   {
     // From the cell cache, as assembly does: no FEValues per cell, so that
@@ -98,17 +130,18 @@ namespace tissuefem::solid
     VectorType ghosted;
     discretization.initialize_vector(ghosted, true);
     make_ghosted(u, ghosted);
-    const unsigned int n_q = cache.n_q, n_scalar = cache.n_scalar;
-    const unsigned int n      = cache.n_dofs;
-    const double      *values = ghosted.trilinos_vector()[0];
-    double             energy = 0;
+    const unsigned int          n_q = cache.n_q, n_scalar = cache.n_scalar;
+    const unsigned int          n      = cache.n_dofs;
+    const double               *values = ghosted.trilinos_vector()[0];
+    double                      energy = 0;
+    std::vector<Tensor<2, dim>> F(n_q);
     for (unsigned int c = 0; c < cache.cells().size(); ++c)
       {
         const auto &cell     = cache.cells()[c];
         const auto &material = materials.material(cell->material_id());
         for (unsigned int q = 0; q < n_q; ++q)
           {
-            Tensor<2, dim> F = unit_symmetric_tensor<dim>();
+            F[q] = unit_symmetric_tensor<dim>();
             for (unsigned int k = 0; k < n_scalar; ++k)
               {
                 const Tensor<1, dim> &g = cache.gradient(c, q, k);
@@ -118,13 +151,21 @@ namespace tissuefem::solid
                       = values[access.ghost_index
                                  [c * n + cache.local_index[k * dim + a]]];
                     for (unsigned int b = 0; b < dim; ++b)
-                      F[a][b] += u_ka * g[b];
+                      F[q][a][b] += u_ka * g[b];
                   }
               }
-            energy += material.energy_density(
-                        F, fibre_field.at(cell->active_cell_index(), q))
-                      * cache.JxW(c)[q];
           }
+        if (materials.mean_dilatation_formulation()
+            && !apply_mean_dilatation(F, cache.JxW(c), n_q))
+          {
+            // No Fbar where a cell is inverted: an inadmissible state.
+            energy = std::numeric_limits<double>::infinity();
+            break;
+          }
+        for (unsigned int q = 0; q < n_q; ++q)
+          energy += material.energy_density(
+                      F[q], fibre_field.at(cell->active_cell_index(), q))
+                    * cache.JxW(c)[q];
       }
     return Utilities::MPI::sum(energy, parallel_tools::communicator());
   }
@@ -221,6 +262,10 @@ namespace tissuefem::solid
   template const VectorType &Solid<dim>::lumped_mass();                \
   template double Solid<dim>::stored_energy(const VectorType &) const; \
   template double Solid<dim>::kinetic_energy(const VectorType &);      \
+  template double Solid<dim>::implicit_energy(const VectorType &,      \
+                                              const VectorType &,      \
+                                              const double,            \
+                                              const double);           \
   template const std::vector<std::vector<types::global_dof_index>>     \
                &Solid<dim>::column_groups();                           \
   template bool Solid<dim>::has_hanging_nodes() const;

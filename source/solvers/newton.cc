@@ -3,9 +3,11 @@
 #include <tissuefem/base/timing.h>
 #include <tissuefem/solvers/newton.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iostream>
+#include <limits>
 
 namespace tissuefem::solvers
 {
@@ -40,6 +42,17 @@ namespace tissuefem::solvers
                       "norm does not decrease; the last one is taken even if "
                       "it does not. 0 takes full steps.");
     prm.declare_entry(
+      "Line search",
+      "energy",
+      Patterns::Selection("energy|residual norm"),
+      "What a step length must decrease: 'energy', the potential whose "
+      "gradient the residual is (stored energy - external work, plus the "
+      "inertial term 1/(2 dt^2) |u - u_tilde|_M^2 of implicit steps; Armijo's "
+      "condition with quadratic interpolation of the step length), or "
+      "'residual norm' (halvings until |R| decreases). 'energy' falls back to "
+      "the residual norm where the operator has no energy or the update is "
+      "no descent direction.");
+    prm.declare_entry(
       "Lift boundary increments",
       "true",
       Patterns::Bool(),
@@ -67,6 +80,7 @@ namespace tissuefem::solvers
     relative_residual_tolerance = prm.get_double("Relative residual tolerance");
     update_tolerance            = prm.get_double("Update tolerance");
     max_line_search_steps       = prm.get_integer("Line search steps");
+    energy_line_search          = prm.get("Line search") == "energy";
     verbose                     = prm.get_bool("Verbose");
     lift_boundary_increments    = prm.get_bool("Lift boundary increments");
     prm.leave_subsection();
@@ -78,7 +92,8 @@ namespace tissuefem::solvers
     const NewtonParameters &parameters,
     VectorType             &u,
     const std::function<void(const VectorType &, VectorType &, bool)> &assemble,
-    const std::function<void(VectorType &, const VectorType &)> &solve_jacobian)
+    const std::function<void(VectorType &, const VectorType &)> &solve_jacobian,
+    const std::function<double(const VectorType &)>             &energy)
   {
     using Clock = std::chrono::steady_clock;
     NewtonResult result;
@@ -106,6 +121,25 @@ namespace tissuefem::solvers
     double norm = checked_l2_norm(residual);
     result.residual_norms.push_back(norm);
     const double first_norm = norm;
+
+    const bool use_energy = parameters.energy_line_search && energy
+                            && parameters.max_line_search_steps > 0;
+    // The energy at a state, +infinity where the model cannot evaluate it.
+    auto energy_at = [&](const VectorType &x) {
+      const auto start = Clock::now();
+      double     value = std::numeric_limits<double>::infinity();
+      try
+        {
+          value = energy(x);
+        }
+      catch (const SolverError &)
+        {
+        }
+      result.assembly_seconds += seconds_since(start);
+      return std::isfinite(value) ? value
+                                  : std::numeric_limits<double>::infinity();
+    };
+    double current_energy = use_energy ? energy_at(u) : 0.;
 
     while (true)
       {
@@ -143,36 +177,89 @@ namespace tissuefem::solvers
         result.solve_seconds += seconds_since(start);
         ++result.iterations;
 
-        // Backtracking: accept the first step length that lowers |R| (or the
-        // full step when the line search is off).
-        double alpha    = 1;
-        bool   accepted = false;
-        for (unsigned int k = 0; k <= parameters.max_line_search_steps; ++k)
+        // Energy line search where the update descends (R.du < 0; R is the
+        // energy gradient); else the residual norm.
+        const double slope    = use_energy && std::isfinite(current_energy)
+                                  ? residual * update
+                                  : 0.;
+        double       alpha    = 1;
+        bool         accepted = false;
+        if (slope < 0)
           {
-            trial = u;
-            trial.add(alpha, update);
-            try
+            // Sums of many terms of either sign: allow their round-off.
+            const double round_off    = 1e-11 * std::abs(current_energy);
+            double       trial_energy = current_energy;
+            for (unsigned int k = 0; k <= parameters.max_line_search_steps; ++k)
               {
-                // The Jacobian is assembled with the trial residual: the full
-                // step is almost always accepted, and then it is the one the
-                // next iteration needs.
-                timed_assemble(trial, trial_residual, true);
-                const double trial_norm = checked_l2_norm(trial_residual);
-                if (std::isfinite(trial_norm)
-                    && (trial_norm < norm
-                        || parameters.max_line_search_steps == 0
-                        || k == parameters.max_line_search_steps))
+                trial = u;
+                trial.add(alpha, update);
+                trial_energy = energy_at(trial);
+                if (trial_energy
+                    <= current_energy + 1e-4 * alpha * slope + round_off)
                   {
-                    accepted = std::isfinite(trial_norm);
+                    accepted = true;
                     break;
                   }
+                // Minimizer of the quadratic through E(0), E'(0), E(alpha),
+                // kept within [0.1, 0.5] alpha.
+                double next = 0.5 * alpha;
+                if (std::isfinite(trial_energy))
+                  {
+                    const double curvature
+                      = trial_energy - current_energy - slope * alpha;
+                    if (curvature > 0)
+                      next = -slope * alpha * alpha / (2 * curvature);
+                  }
+                alpha = std::clamp(next, 0.1 * alpha, 0.5 * alpha);
               }
-            catch (const SolverError &e)
+            if (!accepted && std::isfinite(trial_energy))
+              accepted = true; // the last trial, as the residual search does
+            if (accepted)
               {
-                result.failure = e.what();
+                try
+                  {
+                    timed_assemble(trial, trial_residual, true);
+                    accepted = std::isfinite(checked_l2_norm(trial_residual));
+                    current_energy = trial_energy;
+                  }
+                catch (const SolverError &e)
+                  {
+                    result.failure = e.what();
+                    accepted       = false;
+                  }
               }
-            alpha *= 0.5;
           }
+        else
+          for (unsigned int k = 0; k <= parameters.max_line_search_steps; ++k)
+            {
+              // Backtracking: accept the first step length that lowers |R|
+              // (or the full step when the line search is off).
+              trial = u;
+              trial.add(alpha, update);
+              try
+                {
+                  // The Jacobian is assembled with the trial residual: the
+                  // full step is almost always accepted, and then it is the
+                  // one the next iteration needs.
+                  timed_assemble(trial, trial_residual, true);
+                  const double trial_norm = checked_l2_norm(trial_residual);
+                  if (std::isfinite(trial_norm)
+                      && (trial_norm < norm
+                          || parameters.max_line_search_steps == 0
+                          || k == parameters.max_line_search_steps))
+                    {
+                      accepted = std::isfinite(trial_norm);
+                      if (accepted && use_energy)
+                        current_energy = energy_at(trial);
+                      break;
+                    }
+                }
+              catch (const SolverError &e)
+                {
+                  result.failure = e.what();
+                }
+              alpha *= 0.5;
+            }
         if (!accepted)
           {
             if (result.failure.empty())

@@ -150,6 +150,9 @@ namespace tissuefem::time
       u_tilde = old_state.u;
       u_tilde.add(h, old_state.v);
       initial_guess = u_tilde;
+      // u_{n+1} = u_tilde + h^2 a_{n+1}, with a_{n+1} ~ a_n.
+      if (context->time.extrapolate)
+        initial_guess.add(h * h, old_state.a);
     }
 
     void
@@ -164,6 +167,23 @@ namespace tissuefem::time
       new_state.a = new_state.u;
       new_state.a -= u_tilde;
       new_state.a /= h * h;
+    }
+
+    std::vector<double>
+    checkpoint_scalars() const override
+    {
+      auto scalars = ImplicitOneStep::checkpoint_scalars();
+      scalars.push_back(h);
+      scalars.push_back(have_acceleration ? 1. : 0.);
+      return scalars;
+    }
+
+    void
+    restore_scalars(const std::vector<double> &scalars) override
+    {
+      ImplicitOneStep::restore_scalars(scalars);
+      h                 = scalars.at(3);
+      have_acceleration = scalars.at(4) != 0;
     }
 
   private:

@@ -249,6 +249,36 @@ namespace tissuefem::time
       return {&previous};
     }
 
+    /// Without an active region the state is u, v, a, u- and the numbers
+    /// below; the active region's masks are not written.
+    bool
+    checkpointable() const override
+    {
+      return threshold == 0;
+    }
+
+    std::vector<double>
+    checkpoint_scalars() const override
+    {
+      return {previous_step,
+              critical_step,
+              omega_max,
+              energy,
+              double(steps_since_energy),
+              double(steps)};
+    }
+
+    void
+    restore_scalars(const std::vector<double> &scalars) override
+    {
+      previous_step      = scalars.at(0);
+      critical_step      = scalars.at(1);
+      omega_max          = scalars.at(2);
+      energy             = scalars.at(3);
+      steps_since_energy = static_cast<unsigned int>(scalars.at(4));
+      steps              = static_cast<unsigned int>(scalars.at(5));
+    }
+
     void
     mesh_changed() override
     {

@@ -2,7 +2,10 @@
 #include <tissuefem/base/timing.h>
 #include <tissuefem/time/implicit_one_step.h>
 
+#include <algorithm>
+#include <cmath>
 #include <iostream>
+#include <limits>
 #include <sstream>
 
 namespace tissuefem::time
@@ -71,7 +74,11 @@ namespace tissuefem::time
       },
       [&](VectorType &x, const VectorType &b) {
         context->linear_solver.solve(solid.jacobian(), x, b);
+      },
+      [&](const VectorType &x) {
+        return solid.implicit_energy(x, u_tilde, c, t_new);
       });
+    last_iterations = result.iterations;
     report.newton_iterations += result.iterations;
     report.assembly_seconds += result.assembly_seconds;
     report.solve_seconds += result.solve_seconds;
@@ -96,12 +103,15 @@ namespace tissuefem::time
     double             h = std::min(step_size, end_time - state.time);
     State              next;
     const unsigned int linear_before = linear_solver.statistics().iterations;
+    bool               reduced       = false;
     for (unsigned int halvings = 0;; ++halvings)
       {
         const std::string failure = attempt(state, h, next, report);
         if (failure.empty())
           break;
         ++report.rejected_attempts;
+        failed_step = h;
+        reduced     = true;
         std::ostringstream message;
         message << "Newton failed at t = " << state.time + h
                 << " with dt = " << h << ": " << failure;
@@ -124,8 +134,30 @@ namespace tissuefem::time
     state.v.swap(next.v);
     state.a.swap(next.a);
     report.dt = h;
-    // After a reduced step, grow back towards the requested step size.
-    step_size = std::min(context->time.time_step, 2 * h);
+    step_size = next_step_size(h, reduced);
     return report;
+  }
+
+
+  double
+  ImplicitOneStep::next_step_size(const double h, const bool reduced)
+  {
+    const unsigned int optimal = context->time.optimal_iterations;
+    // A step shortened only to land on an output time says nothing about
+    // the step size: grow from the size asked for.
+    const double base = reduced ? h : std::max(h, step_size);
+    double       next = 2 * base;
+    if (optimal > 0)
+      next = base
+             * std::clamp(std::sqrt(double(optimal)
+                                    / std::max(1u, last_iterations)),
+                          0.5,
+                          2.);
+    // Memory of the last failure: approach it geometrically, never jump
+    // back to it; it fades as steps succeed.
+    if (next >= failed_step)
+      next = std::min(next, std::sqrt(h * failed_step));
+    failed_step *= 1.25;
+    return std::min(context->time.time_step, next);
   }
 } // namespace tissuefem::time

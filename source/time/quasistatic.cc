@@ -29,12 +29,15 @@ namespace tissuefem::time
 
     void
     predict(const State &old_state,
-            const double,
-            VectorType &u_tilde,
-            VectorType &initial_guess) const override
+            const double h,
+            VectorType  &u_tilde,
+            VectorType  &initial_guess) const override
     {
       u_tilde       = old_state.u;
       initial_guess = old_state.u;
+      // v is the last step's difference quotient: linear extrapolation.
+      if (context->time.extrapolate)
+        initial_guess.add(h, old_state.v);
     }
 
     void

@@ -30,7 +30,36 @@ namespace tissuefem::time
                       "When Newton fails, the step is retried with half the "
                       "step size at most this many times before the run stops "
                       "with an error. After a successful reduced step the "
-                      "step size doubles back towards 'Time step'.");
+                      "step size grows back towards 'Time step' (by 2, or as "
+                      "'Optimal Newton iterations' says), but never straight "
+                      "back to a size that failed: it approaches the last "
+                      "failed size geometrically (sqrt(h h_failed)), and that "
+                      "memory fades by a factor 1.25 per successful step.");
+    prm.declare_entry(
+      "Optimal Newton iterations",
+      "0",
+      Patterns::Integer(0, 100),
+      "Implicit one-step methods (quasistatic, backward Euler): the Newton "
+      "iterations per step the step controller aims at, as FEBio's automatic "
+      "time stepper: after a step that took n iterations the next step is "
+      "h sqrt(optimal/n), between h/2 and 2h and at most 'Time step'. Steps "
+      "then shrink after hard steps and grow after easy ones, so step sizes "
+      "(and, for dynamics, the answer) depend on the iteration counts. 0: "
+      "every step is 'Time step' unless Newton fails.");
+    prm.declare_entry(
+      "Predictor",
+      "previous state",
+      Patterns::Selection("extrapolation|previous state"),
+      "Newton's initial guess in implicit one-step methods: 'previous state' "
+      "(quasistatic: u_n; backward Euler: u_n + h v_n), or 'extrapolation' "
+      "from the previous steps (quasistatic: u_n + h v_n with v_n the last "
+      "step's difference quotient, i.e. linear extrapolation of the load "
+      "path; backward Euler: u_n + h v_n + h^2 a_n). Measured: extrapolation "
+      "costs Newton iterations on nearly incompressible quasistatics (the "
+      "extrapolated state violates the volume constraint at second order) "
+      "and can lead backward Euler into another solution of a step's "
+      "equations when a crushed body re-expands violently; it is therefore "
+      "not the default.");
     prm.declare_entry("Real-time budget",
                       "0.0333333333",
                       Patterns::Double(),
@@ -48,11 +77,13 @@ namespace tissuefem::time
   TimeParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Time integration");
-    integrator        = prm.get("Integrator");
-    end_time          = prm.get_double("End time");
-    time_step         = prm.get_double("Time step");
-    max_step_halvings = prm.get_integer("Maximum step halvings");
-    real_time_budget  = prm.get_double("Real-time budget");
+    integrator         = prm.get("Integrator");
+    end_time           = prm.get_double("End time");
+    time_step          = prm.get_double("Time step");
+    max_step_halvings  = prm.get_integer("Maximum step halvings");
+    optimal_iterations = prm.get_integer("Optimal Newton iterations");
+    extrapolate        = prm.get("Predictor") == "extrapolation";
+    real_time_budget   = prm.get_double("Real-time budget");
     prm.leave_subsection();
     require(std::isfinite(real_time_budget) && real_time_budget > 0,
             "Time integration/Real-time budget",

@@ -237,6 +237,10 @@ namespace tissuefem::tool
                                    p.trajectory,
                                    {},
                                    true);
+            // muparser parses on first use: evaluate here, where a syntax
+            // error becomes this parameter's error.
+            Vector<double> values(dim);
+            trajectory->vector_value(Point<dim>(), values);
           }
         catch (...)
           {

@@ -28,7 +28,7 @@ namespace tissuefem::geometry
 
     std::string  source;    ///< "box" or "file"
     std::string  cell_type; ///< "hypercube" or "simplex"
-    std::string  lower_corner, upper_corner, subdivisions;
+    std::string  lower_corner, upper_corner, subdivisions, corners;
     std::string  mesh_file;
     double       scale;
     unsigned int global_refinements;

@@ -32,6 +32,8 @@ namespace tissuefem::materials
     TangentMethod                 tangent_method;
     std::string                   fibre_direction;
     bool                          edge_length_formulation;
+    bool                          mean_dilatation_formulation;
+    bool                          project_tangent;
   };
 
   template <int dim>
@@ -76,6 +78,22 @@ namespace tissuefem::materials
       return edge_length;
     }
 
+    /// Whether elements evaluate the energy at the F-bar of the cell mean
+    /// dilatation (solid/mean_dilatation.h).
+    bool
+    mean_dilatation_formulation() const
+    {
+      return mean_dilatation;
+    }
+
+    /// Whether tangents are projected to positive definite ones
+    /// (tangent_projection.h).
+    bool
+    project_tangent() const
+    {
+      return project;
+    }
+
   private:
     struct Entry
     {
@@ -88,6 +106,8 @@ namespace tissuefem::materials
     TangentMethod                        method;
     std::unique_ptr<FunctionParser<dim>> fibre;
     bool                                 edge_length;
+    bool                                 mean_dilatation;
+    bool                                 project;
 
     const Entry &
     entry(const types::material_id id) const;

@@ -3,6 +3,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/lac/vector.h>
 
+#include <tissuefem/output/checkpoint.h>
 #include <tissuefem/output/probes.h>
 #include <tissuefem/solid/solid.h>
 #include <tissuefem/time/interface.h>
@@ -29,6 +30,7 @@ namespace tissuefem::output
     unsigned int                    summary_interval;
     std::vector<types::boundary_id> reaction_boundary_ids;
     bool                            report_rest_shape;
+    unsigned int                    checkpoint_interval;
   };
 
   /**
@@ -81,14 +83,28 @@ namespace tissuefem::output
     void
     summary_line(const std::string &line);
 
+    /// What the writer carries from step to step, and the sizes of the
+    /// files it appends to, for a checkpoint.
+    void
+    fill_checkpoint(Checkpoint &checkpoint);
+
+    /// Instead of open() when a run continues from @p checkpoint: the
+    /// files are cut back to their sizes then and appended to.
+    void
+    resume(const Checkpoint &checkpoint);
+
   private:
     OutputParameters             parameters;
     const solid::Solid<dim>     &solid;
     std::unique_ptr<Probes<dim>> probes;
     std::ofstream statistics_file, probes_file, reactions_file, summary;
     /// Energy dissipated by the integrator's damping since the start.
-    double damping_work_sum = 0;
+    double                                      damping_work_sum = 0;
     std::vector<std::pair<double, std::string>> pvd_records;
+
+    /// The files appended to step by step.
+    std::vector<std::string>
+    files() const;
 
     void
     write_vtu(const unsigned int step,

@@ -43,6 +43,7 @@ namespace tissuefem::problems
 
   private:
     ParameterHandler                    &prm;
+    RunContext                           run_context;
     geometry::GeometryParameters         geometry_parameters;
     solid::FiniteElementParameters       fe_parameters;
     materials::MaterialParameters        material_parameters;
@@ -82,5 +83,18 @@ namespace tissuefem::problems
     /// changed.
     bool
     adapt_mesh(const unsigned int step, time::State &state);
+
+    /// Why this scene cannot be checkpointed, or empty.
+    std::string
+    checkpoint_obstacle() const;
+
+    /// The vectors a checkpoint holds: the state and the integrator's
+    /// history.
+    std::vector<VectorType *>
+    checkpoint_vectors(time::State &state);
+
+    /// Writes '<Output/Directory>/checkpoint' for the state after @p step.
+    void
+    write_checkpoint(const unsigned int step, time::State &state);
   };
 } // namespace tissuefem::problems

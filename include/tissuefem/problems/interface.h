@@ -17,6 +17,9 @@ namespace tissuefem::problems
   {
     /// Directory of the parameter file; relative mesh paths start here.
     std::string parameter_directory;
+    /// '--restart DIR': a checkpoint directory the run continues from
+    /// (empty: start at t = 0).
+    std::string restart_directory;
   };
 
   /**

@@ -4,6 +4,7 @@
 
 #include <tissuefem/base/parallel.h>
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -95,6 +96,25 @@ namespace tissuefem::solid
                               const double      time,
                               VectorType       &residual)
       = 0;
+
+    /**
+     * The potential whose gradient (on the unconstrained entries) is
+     * implicit_residual(): c/2 (u - u_tilde)^T M (u - u_tilde) + int Psi dV
+     * - f_ext(t) . u (problem session eq 20 for backward Euler, c =
+     * 1/dt^2). Used by the energy line search; NaN where there is none.
+     */
+    virtual double
+    implicit_energy(const VectorType &u,
+                    const VectorType &u_tilde,
+                    const double      mass_coefficient,
+                    const double      time)
+    {
+      (void)u;
+      (void)u_tilde;
+      (void)mass_coefficient;
+      (void)time;
+      return std::numeric_limits<double>::quiet_NaN();
+    }
 
     /// The Jacobian of the last implicit_residual() call that asked for it.
     virtual MatrixType &

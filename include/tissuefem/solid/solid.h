@@ -90,6 +90,12 @@ namespace tissuefem::solid
                               const double      time,
                               VectorType       &residual) override;
 
+    double
+    implicit_energy(const VectorType &u,
+                    const VectorType &u_tilde,
+                    const double      mass_coefficient,
+                    const double      time) override;
+
     MatrixType &
     jacobian() override
     {
@@ -221,6 +227,19 @@ namespace tissuefem::solid
     /// f_ext(t), and with jacobian K(u) + c M into jacobian_matrix.
     void
     assemble(const Request &request, VectorType &residual);
+
+    /// For the mean dilatation formulation: the effective stresses and
+    /// tangents of a cell and its rank-two coupling (mean_dilatation.h),
+    /// into the assembly's scratch; marks the cell inverted if some det F
+    /// <= 0.
+    template <typename ScratchType, typename CopyType>
+    void
+    mean_dilatation_cell(const materials::Interface<dim> &material,
+                         const unsigned int               c,
+                         const unsigned int               cell_index,
+                         const bool                       jacobian,
+                         ScratchType                     &s,
+                         CopyType                        &copy) const;
 
     Discretization<dim>               &discretization;
     const materials::MaterialSet<dim> &materials;

@@ -25,8 +25,11 @@ namespace tissuefem::solvers
     double       relative_residual_tolerance;
     double       update_tolerance;
     unsigned int max_line_search_steps;
-    bool         lift_boundary_increments;
-    bool         verbose;
+    /// Whether the line search asks for sufficient decrease of the energy
+    /// (where the caller provides one) rather than of the residual norm.
+    bool energy_line_search;
+    bool lift_boundary_increments;
+    bool verbose;
   };
 
   struct NewtonResult
@@ -42,7 +45,12 @@ namespace tissuefem::solvers
   };
 
   /**
-   * Newton's method with a backtracking line search on the residual norm.
+   * Newton's method with a backtracking line search: on the energy whose
+   * gradient the residual is, where @p energy is given and 'Line search' is
+   * 'energy' (Armijo's sufficient decrease E(u + a du) <= E(u) + 1e-4 a R.du,
+   * step lengths from quadratic interpolation, Nocedal and Wright sec 3.5);
+   * on the residual norm otherwise, and also in an iteration whose update
+   * is not a descent direction (R.du >= 0, an indefinite Jacobian).
    * @p assemble(u, residual, with_jacobian) evaluates the residual (and the
    * Jacobian, kept by the caller); it may throw SolverError for a state
    * the model cannot evaluate (an inverted element), which the line search
@@ -56,6 +64,6 @@ namespace tissuefem::solvers
     const NewtonParameters &parameters,
     VectorType             &u,
     const std::function<void(const VectorType &, VectorType &, bool)> &assemble,
-    const std::function<void(VectorType &, const VectorType &)>
-      &solve_jacobian);
+    const std::function<void(VectorType &, const VectorType &)> &solve_jacobian,
+    const std::function<double(const VectorType &)>             &energy = {});
 } // namespace tissuefem::solvers

@@ -2,6 +2,8 @@
 
 #include <tissuefem/time/interface.h>
 
+#include <limits>
+
 namespace tissuefem::time
 {
   /**
@@ -27,6 +29,28 @@ namespace tissuefem::time
 
     StepReport
     advance(State &state, const double end_time) override;
+
+    bool
+    checkpointable() const override
+    {
+      return true;
+    }
+
+    /// The step controller's memory: step size, last failed size, last
+    /// iteration count.
+    std::vector<double>
+    checkpoint_scalars() const override
+    {
+      return {step_size, failed_step, double(last_iterations)};
+    }
+
+    void
+    restore_scalars(const std::vector<double> &scalars) override
+    {
+      step_size       = scalars.at(0);
+      failed_step     = scalars.at(1);
+      last_iterations = static_cast<unsigned int>(scalars.at(2));
+    }
 
   protected:
     /// The coefficient c of the mass term for step size @p h.
@@ -72,7 +96,15 @@ namespace tissuefem::time
                             StepReport  &report);
 
   private:
-    double     step_size = 0;
-    VectorType u_tilde;
+    /// The step controller (see 'Maximum step halvings', 'Optimal Newton
+    /// iterations'): the size after a step of size @p h, @p reduced if
+    /// attempts failed.
+    double
+    next_step_size(const double h, const bool reduced);
+
+    double       step_size       = 0;
+    double       failed_step     = std::numeric_limits<double>::infinity();
+    unsigned int last_iterations = 0;
+    VectorType   u_tilde;
   };
 } // namespace tissuefem::time

@@ -27,6 +27,12 @@ namespace tissuefem::time
     double       end_time;
     double       time_step;
     unsigned int max_step_halvings;
+    /// Whether implicit one-step methods start Newton from an extrapolation
+    /// of the previous steps (else from the previous state).
+    bool extrapolate;
+    /// Newton iterations per step the step controller aims at; 0: steps
+    /// grow back after failures only.
+    unsigned int optimal_iterations;
     /// Wall-clock seconds a step may take in an interactive loop.
     double real_time_budget;
   };
@@ -114,6 +120,31 @@ namespace tissuefem::time
     virtual void
     mesh_changed()
     {
+    }
+
+    /**
+     * Checkpoints ('Output/Checkpoint interval'): whether the integrator
+     * can be stopped and continued bit-identically from the state, its
+     * history() vectors and the numbers checkpoint_scalars() returns
+     * (step-size controllers, energy records), which restore_scalars()
+     * puts back after initialize() on the restored state.
+     */
+    virtual bool
+    checkpointable() const
+    {
+      return false;
+    }
+
+    virtual std::vector<double>
+    checkpoint_scalars() const
+    {
+      return {};
+    }
+
+    virtual void
+    restore_scalars(const std::vector<double> &scalars)
+    {
+      (void)scalars;
     }
 
     /// What the integrator did over the whole run, for the screen (several

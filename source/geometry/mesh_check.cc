@@ -1,0 +1,160 @@
+#include <deal.II/grid/grid_tools.h>
+
+#include <tissuefem/base/input_error.h>
+#include <tissuefem/geometry/mesh_check.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <vector>
+
+namespace tissuefem::geometry
+{
+  namespace
+  {
+    /// "ids 3, 17, 20 (and 4 more)".
+    std::string
+    first_few(const std::vector<unsigned int> &ids)
+    {
+      std::ostringstream text;
+      for (unsigned int i = 0; i < ids.size() && i < 5; ++i)
+        text << (i ? ", " : "") << ids[i];
+      if (ids.size() > 5)
+        text << " (and " << ids.size() - 5 << " more)";
+      return text.str();
+    }
+
+    /// The smallest Jacobian determinant at the vertices of a cell, times
+    /// the reference measure: signed volume for simplices.
+    template <int dim>
+    double
+    smallest_vertex_jacobian(
+      const typename Triangulation<dim>::active_cell_iterator &cell)
+    {
+      if (dim == 1)
+        return cell->vertex(1)[0] - cell->vertex(0)[0];
+      if (cell->reference_cell().is_simplex())
+        {
+          Tensor<2, dim> edges;
+          for (unsigned int d = 0; d < dim; ++d)
+            edges[d] = cell->vertex(d + 1) - cell->vertex(0);
+          return determinant(edges);
+        }
+      // Hypercube: at each vertex the edges to its dim neighbours along
+      // the coordinate directions of the reference cell (vertex v's
+      // neighbour in direction d is v xor 2^d), oriented by the vertex's
+      // position.
+      double smallest = std::numeric_limits<double>::max();
+      for (unsigned int v = 0; v < cell->n_vertices(); ++v)
+        {
+          Tensor<2, dim> edges;
+          double         sign = 1;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              const unsigned int w = v ^ (1u << d);
+              edges[d]             = cell->vertex(w) - cell->vertex(v);
+              if (v & (1u << d))
+                sign = -sign;
+            }
+          smallest = std::min(smallest, sign * determinant(edges));
+        }
+      return smallest;
+    }
+  } // namespace
+
+
+  template <int dim>
+  void
+  check_mesh(const Triangulation<dim> &triangulation, const std::string &file)
+  {
+    const std::string         where    = "Mesh file '" + file + "': ";
+    const auto               &vertices = triangulation.get_vertices();
+    const auto                used     = triangulation.get_used_vertices();
+    std::vector<unsigned int> bad;
+    for (unsigned int v = 0; v < vertices.size(); ++v)
+      if (used[v])
+        for (unsigned int d = 0; d < dim; ++d)
+          if (!std::isfinite(vertices[v][d]))
+            {
+              bad.push_back(v);
+              break;
+            }
+    if (!bad.empty())
+      throw InputError(where
+                       + "vertices with coordinates that are not "
+                         "finite numbers: ids "
+                       + first_few(bad));
+
+    // Duplicates: sort by the first coordinate, compare within a window.
+    const double              extent    = GridTools::diameter(triangulation);
+    const double              tolerance = 1e-10 * extent;
+    std::vector<unsigned int> order;
+    for (unsigned int v = 0; v < vertices.size(); ++v)
+      if (used[v])
+        order.push_back(v);
+    std::sort(order.begin(), order.end(), [&](unsigned int a, unsigned int b) {
+      return vertices[a][0] < vertices[b][0];
+    });
+    for (unsigned int i = 0; i < order.size(); ++i)
+      for (unsigned int j = i + 1;
+           j < order.size()
+           && vertices[order[j]][0] - vertices[order[i]][0] <= tolerance;
+           ++j)
+        if (vertices[order[i]].distance(vertices[order[j]]) <= tolerance)
+          {
+            bad.push_back(std::min(order[i], order[j]));
+            bad.push_back(std::max(order[i], order[j]));
+          }
+    if (!bad.empty())
+      throw InputError(where
+                       + "duplicate vertices (distinct nodes at the "
+                         "same position, which would cut the mesh "
+                         "apart there): pairs of ids "
+                       + first_few(bad));
+
+    // deal.II 9.4 cannot put one finite element on cells of several kinds
+    // (it would crash distributing the degrees of freedom).
+    std::vector<unsigned int> other_kind;
+    const auto first = triangulation.begin_active()->reference_cell();
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->reference_cell() != first)
+        other_kind.push_back(cell->active_cell_index());
+    if (!other_kind.empty())
+      throw InputError(where + "mixes cell types ("
+                       + std::to_string(other_kind.size()) + " cells are not "
+                       + first.to_string()
+                       + " like cell 0), which tissuefem cannot mesh with one "
+                         "element: ids "
+                       + first_few(other_kind));
+
+    std::vector<unsigned int> degenerate, inverted;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      {
+        double length = 0;
+        for (unsigned int v = 1; v < cell->n_vertices(); ++v)
+          length = std::max(length, cell->vertex(v).distance(cell->vertex(0)));
+        const double det = smallest_vertex_jacobian<dim>(cell);
+        if (std::abs(det) <= 1e-12 * std::pow(length, dim))
+          degenerate.push_back(cell->active_cell_index());
+        else if (det < 0)
+          inverted.push_back(cell->active_cell_index());
+      }
+    if (!degenerate.empty())
+      throw InputError(where + std::to_string(degenerate.size())
+                       + " degenerate cells (zero volume): ids "
+                       + first_few(degenerate));
+    if (!inverted.empty())
+      throw InputError(where + std::to_string(inverted.size())
+                       + " inverted cells (negative volume: vertices in the "
+                         "wrong order): ids "
+                       + first_few(inverted));
+  }
+
+  template void
+  check_mesh<1>(const Triangulation<1> &, const std::string &);
+  template void
+  check_mesh<2>(const Triangulation<2> &, const std::string &);
+  template void
+  check_mesh<3>(const Triangulation<3> &, const std::string &);
+} // namespace tissuefem::geometry

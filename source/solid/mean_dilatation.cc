@@ -1,0 +1,163 @@
+#include <tissuefem/solid/mean_dilatation.h>
+
+#include <Sacado.hpp>
+
+#include <cmath>
+
+namespace tissuefem::solid
+{
+  template <int dim>
+  double
+  mean_dilatation(const std::vector<Tensor<2, dim>> &F,
+                  const double                      *JxW,
+                  const unsigned int                 n_q)
+  {
+    double volume = 0, deformed = 0, smallest = 1;
+    for (unsigned int q = 0; q < n_q; ++q)
+      {
+        const double J = determinant(F[q]);
+        smallest       = std::min(smallest, J);
+        volume += JxW[q];
+        deformed += J * JxW[q];
+      }
+    return smallest > 0 ? deformed / volume : std::min(smallest, 0.);
+  }
+
+
+  template <int dim>
+  Tensor<2, dim>
+  modified_deformation_gradient(const Tensor<2, dim> &F, const double theta)
+  {
+    return std::pow(theta / determinant(F), 1. / dim) * F;
+  }
+
+
+  template <int dim>
+  bool
+  apply_mean_dilatation(std::vector<Tensor<2, dim>> &F,
+                        const double                *JxW,
+                        const unsigned int           n_q)
+  {
+    const double theta = mean_dilatation(F, JxW, n_q);
+    if (theta <= 0)
+      return false;
+    for (unsigned int q = 0; q < n_q; ++q)
+      F[q] = modified_deformation_gradient(F[q], theta);
+    return true;
+  }
+
+
+  template <int dim>
+  void
+  mean_dilatation_stress(const Tensor<2, dim>     &F,
+                         const double              theta,
+                         const Tensor<2, dim>     &P_bar,
+                         MeanDilatationPoint<dim> &point)
+  {
+    const double         s     = std::pow(theta / determinant(F), 1. / dim);
+    const double         power = s * scalar_product(P_bar, F); // Pbar : Fbar
+    const Tensor<2, dim> F_inverse_transpose = transpose(invert(F));
+    point.phi_F     = s * P_bar - (power / dim) * F_inverse_transpose;
+    point.phi_theta = power / (dim * theta);
+  }
+
+
+  template <int dim>
+  void
+  mean_dilatation_stress_and_tangent(const Tensor<2, dim>     &F,
+                                     const double              theta,
+                                     const Tensor<2, dim>     &P_bar,
+                                     const Tensor<4, dim>     &A_bar,
+                                     MeanDilatationPoint<dim> &point)
+  {
+    // Variables x = (F_00, F_01, ..., F_dd, theta); g(x) = Fbar.
+    constexpr int n = dim * dim + 1;
+    using Inner     = Sacado::Fad::SFad<double, n>;
+    using Number    = Sacado::Fad::SFad<Inner, n>;
+    Number x[n];
+    for (int m = 0; m < n; ++m)
+      {
+        const double value = m < dim * dim ? F[m / dim][m % dim] : theta;
+        x[m]               = Number(n, m, Inner(n, m, value));
+      }
+    Number J;
+    if constexpr (dim == 1)
+      J = x[0];
+    else if constexpr (dim == 2)
+      J = x[0] * x[3] - x[1] * x[2];
+    else
+      J = x[0] * (x[4] * x[8] - x[5] * x[7])
+          - x[1] * (x[3] * x[8] - x[5] * x[6])
+          + x[2] * (x[3] * x[7] - x[4] * x[6]);
+    const Number s = pow(x[dim * dim] / J, 1. / dim);
+    double       g1[dim * dim][n], g2[dim * dim][n][n];
+    for (int e = 0; e < dim * dim; ++e)
+      {
+        const Number g = s * x[e];
+        for (int m = 0; m < n; ++m)
+          {
+            g1[e][m] = g.dx(m).val();
+            for (int k = 0; k < n; ++k)
+              g2[e][m][k] = g.dx(m).dx(k);
+          }
+      }
+    // phi_m = Pbar_e g_e,m;  phi_mk = g_e,m Abar_ef g_f,k + Pbar_e g_e,mk.
+    double phi1[n], phi2[n][n], T[n][dim * dim];
+    for (int m = 0; m < n; ++m)
+      {
+        phi1[m] = 0;
+        for (int f = 0; f < dim * dim; ++f)
+          T[m][f] = 0;
+        for (int e = 0; e < dim * dim; ++e)
+          {
+            phi1[m] += P_bar[e / dim][e % dim] * g1[e][m];
+            if (g1[e][m] != 0)
+              for (int f = 0; f < dim * dim; ++f)
+                T[m][f] += g1[e][m] * A_bar[e / dim][e % dim][f / dim][f % dim];
+          }
+      }
+    for (int m = 0; m < n; ++m)
+      for (int k = m; k < n; ++k)
+        {
+          double value = 0;
+          for (int e = 0; e < dim * dim; ++e)
+            value += T[m][e] * g1[e][k] + P_bar[e / dim][e % dim] * g2[e][m][k];
+          phi2[m][k] = phi2[k][m] = value;
+        }
+    constexpr int t = dim * dim;
+    for (int m = 0; m < t; ++m)
+      {
+        point.phi_F[m / dim][m % dim]       = phi1[m];
+        point.phi_F_theta[m / dim][m % dim] = phi2[m][t];
+        for (int k = 0; k < t; ++k)
+          point.phi_FF[m / dim][m % dim][k / dim][k % dim] = phi2[m][k];
+      }
+    point.phi_theta       = phi1[t];
+    point.phi_theta_theta = phi2[t][t];
+  }
+
+
+#define TISSUEFEM_INSTANTIATE(dim)                                          \
+  template double mean_dilatation<dim>(const std::vector<Tensor<2, dim>> &, \
+                                       const double *,                      \
+                                       const unsigned int);                 \
+  template Tensor<2, dim> modified_deformation_gradient<dim>(               \
+    const Tensor<2, dim> &, const double);                                  \
+  template bool apply_mean_dilatation<dim>(std::vector<Tensor<2, dim>> &,   \
+                                           const double *,                  \
+                                           const unsigned int);             \
+  template void mean_dilatation_stress<dim>(const Tensor<2, dim> &,         \
+                                            const double,                   \
+                                            const Tensor<2, dim> &,         \
+                                            MeanDilatationPoint<dim> &);    \
+  template void mean_dilatation_stress_and_tangent<dim>(                    \
+    const Tensor<2, dim> &,                                                 \
+    const double,                                                           \
+    const Tensor<2, dim> &,                                                 \
+    const Tensor<4, dim> &,                                                 \
+    MeanDilatationPoint<dim> &);
+  TISSUEFEM_INSTANTIATE(1)
+  TISSUEFEM_INSTANTIATE(2)
+  TISSUEFEM_INSTANTIATE(3)
+#undef TISSUEFEM_INSTANTIATE
+} // namespace tissuefem::solid

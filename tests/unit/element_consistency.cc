@@ -1,0 +1,172 @@
+// The residual is the gradient of implicit_energy() and the Jacobian the
+// derivative of the residual, for the formulations whose elements couple
+// quadrature points or need a custom tangent: the mean dilatation (F-bar)
+// element on Q1 and Q2 quadrilaterals, Q1 hexahedra and P2 tetrahedra, and
+// the invertible neo-Hookean model on states with inverted and collapsed
+// cells. Checked against central differences along random directions (the
+// energy line search relies on the first, Newton's quadratic convergence on
+// the second). With 'Tangent projection = positive definite' the Jacobian
+// of a badly inverted state must be positive semi-definite.
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <tissuefem/base/application.h>
+
+#include "../tests.h"
+#include "solid_scene.h"
+
+using namespace dealii;
+using namespace tissuefem;
+
+namespace
+{
+  std::string
+  scene(const int          dim,
+        const std::string &cells,
+        const int          degree,
+        const std::string &model,
+        const std::string &formulation,
+        const std::string &projection)
+  {
+    return "set Dimension = " + std::to_string(dim) + R"(
+    subsection Geometry
+      set Cell type    = )"
+           + cells + R"(
+      set Lower corner = 0, 0, 0
+      set Upper corner = 2, 1, 1
+      set Subdivisions = 3, 2, 2
+    end
+    subsection Finite element
+      set Polynomial degree = )"
+           + std::to_string(degree) + R"(
+    end
+    subsection Materials
+      set Model              = )"
+           + model + R"(
+      set Young's modulus    = 10
+      set Poisson's ratio    = 0.45
+      set Density            = 2
+      set Formulation        = )"
+           + formulation + R"(
+      set Tangent projection = )"
+           + projection + R"(
+    end
+    subsection Boundary conditions
+      set Neumann = )"
+           + std::string(dim == 2 ? "1: 0.3; -0.2" : "1: 0.3; -0.2; 0.1") + R"(
+      set Gravity = 0, -1, 0.5
+    end
+  )";
+  }
+
+  template <int dim>
+  void
+  check(const std::string &name,
+        const std::string &text,
+        const double       amplitude,
+        const bool         check_definite)
+  {
+    ParameterHandler prm;
+    declare_all_parameters(prm);
+    prm.parse_input_from_string(text);
+    tissuefem_tests::SolidScene<dim> scene(prm);
+    auto                            &solid = *scene.solid;
+    tissuefem_tests::Random          random(20261123);
+    VectorType                       u, u_tilde, d, r, r_plus, r_minus, Jd;
+    solid.initialize_vector(u);
+    solid.initialize_vector(u_tilde);
+    solid.initialize_vector(d);
+    for (const auto i : u.locally_owned_elements())
+      {
+        u[i]       = amplitude * random.uniform();
+        u_tilde[i] = 0.05 * random.uniform();
+        d[i]       = random.uniform();
+      }
+    const double c = 3., t = 0.7, h = 1e-6;
+    solid.implicit_residual(u, u_tilde, c, t, r, true);
+    Jd.reinit(u);
+    solid.jacobian().vmult(Jd, d);
+
+    VectorType x(u);
+    x.add(h, d);
+    const double e_plus = solid.implicit_energy(x, u_tilde, c, t);
+    solid.implicit_residual(x, u_tilde, c, t, r_plus, false);
+    x.add(-2 * h, d);
+    const double e_minus = solid.implicit_energy(x, u_tilde, c, t);
+    solid.implicit_residual(x, u_tilde, c, t, r_minus, false);
+
+    const double slope = r * d;
+    tissuefem_tests::check_small(std::abs((e_plus - e_minus) / (2 * h) - slope)
+                                   / std::abs(slope),
+                                 1e-6,
+                                 name + ": residual . d against dE/dd");
+    r_plus -= r_minus;
+    r_plus /= 2 * h;
+    r_plus -= Jd;
+    // (A projected tangent is no derivative.)
+    if (!check_definite)
+      tissuefem_tests::check_small(r_plus.l2_norm() / Jd.l2_norm(),
+                                   1e-6,
+                                   name + ": J d against dR/dd");
+    else
+      {
+        // d^T J d >= 0 for every random direction.
+        double smallest = 1e300, largest = 0;
+        for (unsigned int k = 0; k < 20; ++k)
+          {
+            for (const auto i : d.locally_owned_elements())
+              d[i] = random.uniform();
+            solid.jacobian().vmult(Jd, d);
+            smallest = std::min(smallest, (Jd * d) / (d * d));
+            largest  = std::max(largest, (Jd * d) / (d * d));
+          }
+        tissuefem_tests::check(smallest >= -1e-12 * largest,
+                               name
+                                 + ": projected Jacobian is positive "
+                                   "semi-definite on 20 directions",
+                               "smallest Rayleigh quotient "
+                                 + std::to_string(smallest) + ", largest "
+                                 + std::to_string(largest));
+      }
+  }
+} // namespace
+
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  const std::string md = "mean dilatation", plain = "displacement";
+  check<2>("F-bar Q1, 2D",
+           scene(2, "hypercube", 1, "neo-Hookean", md, "none"),
+           0.1,
+           false);
+  check<2>("F-bar Q2, 2D",
+           scene(2, "hypercube", 2, "neo-Hookean", md, "none"),
+           0.05,
+           false);
+  check<3>("F-bar Q1, 3D",
+           scene(3, "hypercube", 1, "robust neo-Hookean", md, "none"),
+           0.1,
+           false);
+  check<3>("F-bar P2 tetrahedra",
+           scene(3, "simplex", 2, "St Venant-Kirchhoff", md, "none"),
+           0.05,
+           false);
+  check<2>("invertible neo-Hookean, inverted, 2D",
+           scene(2, "hypercube", 1, "invertible neo-Hookean", plain, "none"),
+           1.5,
+           false);
+  check<3>("invertible neo-Hookean, inverted, 3D",
+           scene(3, "simplex", 1, "invertible neo-Hookean", plain, "none"),
+           1.5,
+           false);
+  check<3>(
+    "invertible neo-Hookean, projected tangent",
+    scene(
+      3, "simplex", 1, "invertible neo-Hookean", plain, "positive definite"),
+    1.5,
+    true);
+  return tissuefem_tests::exit_status();
+}
