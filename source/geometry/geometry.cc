@@ -4,6 +4,7 @@
 #include <deal.II/grid/grid_tools.h>
 
 #include <tissuefem/base/input_error.h>
+#include <tissuefem/base/parallel.h>
 #include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/geometry/geometry.h>
 #include <tissuefem/geometry/mesh_check.h>
@@ -271,8 +272,10 @@ namespace tissuefem::geometry
                       const std::string  &extension,
                       Triangulation<dim> &triangulation)
     {
-      GridIn<dim>   grid_in(triangulation);
-      std::ifstream in(file);
+      GridIn<dim>        grid_in(triangulation);
+      std::ifstream      in(file);
+      const unsigned int reoriented =
+        extension == ".msh" ? count_inverted_gmsh_simplices(file, dim) : 0;
       try
         {
           if (extension == ".msh")
@@ -292,6 +295,13 @@ namespace tissuefem::geometry
           throw InputError("Mesh file '" + file
                            + "' could not be read: " + one_line_message(e));
         }
+      if (reoriented > 0)
+        parallel_tools::screen()
+          << "Mesh file '" << file << "': " << reoriented
+          << " cells had their vertices in inverted order (negative volume) "
+             "and were reoriented by the reader (a safe repair: the cell is "
+             "the same)."
+          << std::endl;
     }
 
 

@@ -4,6 +4,9 @@
 #include <tissuefem/geometry/mesh_check.h>
 
 #include <algorithm>
+#include <array>
+#include <fstream>
+#include <map>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -150,6 +153,101 @@ namespace tissuefem::geometry
                          "wrong order): ids "
                        + first_few(inverted));
   }
+
+  unsigned int
+  count_inverted_gmsh_simplices(const std::string &file, const int dim)
+  {
+    std::ifstream                         in(file);
+    std::map<long, std::array<double, 3>> nodes;
+    std::string                           line;
+    unsigned int                          inverted = 0;
+    // Gmsh 1.0 ($NOD, $ELM: id type phys elem n nodes...) and 2.x ASCII
+    // ($Nodes, $Elements: id type n_tags tags... nodes...).
+    enum
+    {
+      none,
+      node_list,
+      element_list
+    } section   = none;
+    bool version2 = false, counted = false;
+    while (std::getline(in, line))
+      {
+        if (line.rfind("$NOD", 0) == 0 || line.rfind("$Nodes", 0) == 0)
+          {
+            section  = node_list;
+            version2 = line.rfind("$Nodes", 0) == 0;
+            counted  = false;
+            continue;
+          }
+        if (line.rfind("$ELM", 0) == 0 || line.rfind("$Elements", 0) == 0)
+          {
+            section = element_list;
+            counted = false;
+            continue;
+          }
+        if (line.rfind("$", 0) == 0)
+          {
+            section = none;
+            continue;
+          }
+        std::istringstream fields(line);
+        if (section == none)
+          continue;
+        if (!counted)
+          {
+            counted = true; // the count line
+            continue;
+          }
+        if (section == node_list)
+          {
+            long                  id;
+            std::array<double, 3> x{};
+            if (fields >> id >> x[0] >> x[1] >> x[2])
+              nodes[id] = x;
+            continue;
+          }
+        long id, type, n_nodes = 0;
+        if (!(fields >> id >> type))
+          return 0;
+        if (version2)
+          {
+            long n_tags, tag;
+            fields >> n_tags;
+            for (long t = 0; t < n_tags; ++t)
+              fields >> tag;
+            n_nodes = type == 2 ? 3 : type == 4 ? 4 : 0;
+          }
+        else
+          {
+            long physical, elementary;
+            fields >> physical >> elementary >> n_nodes;
+          }
+        if (!((dim == 2 && type == 2 && n_nodes == 3) ||
+              (dim == 3 && type == 4 && n_nodes == 4)))
+          continue;
+        std::array<std::array<double, 3>, 4> x;
+        for (long k = 0; k < n_nodes; ++k)
+          {
+            long node;
+            if (!(fields >> node) || nodes.count(node) == 0)
+              return 0; // the reader reports it
+            x[k] = nodes[node];
+          }
+        double e[3][3];
+        for (int k = 0; k < dim; ++k)
+          for (int c = 0; c < 3; ++c)
+            e[k][c] = x[k + 1][c] - x[0][c];
+        const double volume =
+          dim == 2 ? e[0][0] * e[1][1] - e[0][1] * e[1][0] :
+                     e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
+                       e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+                       e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
+        if (volume < 0)
+          ++inverted;
+      }
+    return inverted;
+  }
+
 
   template void
   check_mesh<1>(const Triangulation<1> &, const std::string &);

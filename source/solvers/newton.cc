@@ -189,6 +189,7 @@ namespace tissuefem::solvers
             // Sums of many terms of either sign: allow their round-off.
             const double round_off    = 1e-11 * std::abs(current_energy);
             double       trial_energy = current_energy;
+            bool         assembled    = false;
             for (unsigned int k = 0; k <= parameters.max_line_search_steps; ++k)
               {
                 trial = u;
@@ -200,6 +201,25 @@ namespace tissuefem::solvers
                     accepted = true;
                     break;
                   }
+                // Near a solution the energy's change falls below its
+                // round-off: a full step that halves the residual is
+                // Newton's quadratic phase, take it.
+                if (k == 0 && std::isfinite(trial_energy))
+                  try
+                    {
+                      timed_assemble(trial, trial_residual, true);
+                      const double trial_norm = checked_l2_norm(trial_residual);
+                      if (std::isfinite(trial_norm) && trial_norm < 0.5 * norm)
+                        {
+                          current_energy = trial_energy;
+                          assembled      = true;
+                          accepted       = true;
+                          break;
+                        }
+                    }
+                  catch (const SolverError &)
+                    {
+                    }
                 // Minimizer of the quadratic through E(0), E'(0), E(alpha),
                 // kept within [0.1, 0.5] alpha.
                 double next = 0.5 * alpha;
@@ -214,7 +234,7 @@ namespace tissuefem::solvers
               }
             if (!accepted && std::isfinite(trial_energy))
               accepted = true; // the last trial, as the residual search does
-            if (accepted)
+            if (accepted && !assembled)
               {
                 try
                   {

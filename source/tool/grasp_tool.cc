@@ -1,6 +1,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <tissuefem/base/input_error.h>
+#include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/base/parallel.h>
 #include <tissuefem/base/timing.h>
 #include <tissuefem/tool/grasp_tool.h>
@@ -229,25 +230,9 @@ namespace tissuefem::tool
       }
     else
       {
-        trajectory = std::make_unique<FunctionParser<dim>>(dim);
-        try
-          {
-            trajectory->initialize(FunctionParser<dim>::default_variable_names()
-                                     + ",t",
-                                   p.trajectory,
-                                   {},
-                                   true);
-            // muparser parses on first use: evaluate here, where a syntax
-            // error becomes this parameter's error.
-            Vector<double> values(dim);
-            trajectory->vector_value(Point<dim>(), values);
-          }
-        catch (...)
-          {
-            throw InputError("Parameter 'Tool/Trajectory': cannot parse '"
-                             + p.trajectory + "' as " + std::to_string(dim)
-                             + " expressions of t separated by ';'");
-          }
+        // One line naming the parameter for any syntax error (make_function
+        // silences muparser's own report).
+        trajectory = make_function<dim>(p.trajectory, dim, "Tool/Trajectory");
       }
     for (unsigned int d = 0; d < dim && p.live_port < 0; ++d)
       require(std::isfinite(displacement(p.grasp_time)[d]),

@@ -798,10 +798,12 @@ def mesh_cases(repo, work, rng):
             data = data.encode("ascii")
         mesh = name + ext
         mesh_path = os.path.join(work, name, mesh)
-        cases.append(Case("mesh", name,
+        repair = name == "msh-inverted-swapped-nodes"
+        cases.append(Case("repair" if repair else "mesh", name,
                           {mesh: data,
                            "scene.prm": mesh_scene(mesh_path, dim).encode()},
-                          "scene.prm", must_name=[mesh]))
+                          "scene.prm", must_name=[mesh],
+                          args=["--validate"] if repair else []))
     return cases
 
 
@@ -909,7 +911,9 @@ def check(exe, work, case, notes):
         exe, case.args + [os.path.join(directory, case.prm)], cwd)
 
     problems = []
-    expected = 0 if case.kind == "control" else 2
+    # 'repair': input that is safe to repair, run with --validate: exit 0,
+    # and the repair must be said on the screen.
+    expected = 0 if case.kind in ("control", "repair") else 2
     if status is None:
         problems.append("no exit within %d s (killed)" % TIMEOUT)
     elif status != expected:
@@ -926,7 +930,9 @@ def check(exe, work, case, notes):
     # kept for inspection (after the listings above)
     with open(os.path.join(directory, "stderr.txt"), "wb") as f:
         f.write(err)
-    if case.kind != "control":
+    if case.kind == "repair" and b"reoriented" not in out:
+        problems.append("the repair is not reported on the screen")
+    if case.kind not in ("control", "repair"):
         text = err.decode("utf-8", errors="replace")
         body = text[:-1] if text.endswith("\n") else text
         if not body.strip():

@@ -26,4 +26,13 @@ namespace tissuefem::geometry
   template <int dim>
   void
   check_mesh(const Triangulation<dim> &triangulation, const std::string &file);
+
+  /**
+   * The number of triangles (@p dim = 2) or tetrahedra (3) of a Gmsh ASCII
+   * file (formats 1.0 and 2.x) whose vertices are listed in inverted order
+   * (negative volume). deal.II's reader reorients them silently; tissuefem
+   * says so. 0 where the file cannot be parsed (the reader reports that).
+   */
+  unsigned int
+  count_inverted_gmsh_simplices(const std::string &file, const int dim);
 } // namespace tissuefem::geometry
