@@ -280,7 +280,6 @@ namespace tissuefem
           << "tissuefem: " << parallel_tools::n_processes()
           << " MPI process(es), " << MultithreadInfo::n_threads()
           << " thread(s) each" << std::endl;
-        install_interruption_handlers();
         problem->run();
         return 0;
       }

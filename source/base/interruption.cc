@@ -15,6 +15,8 @@ namespace tissuefem
     record_signal(int signal)
     {
       received = signal;
+      // A second signal ends the process at once.
+      std::signal(signal, SIG_DFL);
     }
   } // namespace
 

@@ -5,10 +5,10 @@
 
 #include <algorithm>
 #include <array>
-#include <fstream>
-#include <map>
 #include <cmath>
+#include <fstream>
 #include <limits>
+#include <map>
 #include <sstream>
 #include <vector>
 
@@ -168,10 +168,15 @@ namespace tissuefem::geometry
       none,
       node_list,
       element_list
-    } section   = none;
+    } section
+      = none;
     bool version2 = false, counted = false;
     while (std::getline(in, line))
       {
+        // Gmsh 4 lists nodes and elements in blocks: not counted here.
+        if (line.rfind("$MeshFormat", 0) == 0 && std::getline(in, line)
+            && line.rfind("4", 0) == 0)
+          return 0;
         if (line.rfind("$NOD", 0) == 0 || line.rfind("$Nodes", 0) == 0)
           {
             section  = node_list;
@@ -222,8 +227,8 @@ namespace tissuefem::geometry
             long physical, elementary;
             fields >> physical >> elementary >> n_nodes;
           }
-        if (!((dim == 2 && type == 2 && n_nodes == 3) ||
-              (dim == 3 && type == 4 && n_nodes == 4)))
+        if (!((dim == 2 && type == 2 && n_nodes == 3)
+              || (dim == 3 && type == 4 && n_nodes == 4)))
           continue;
         std::array<std::array<double, 3>, 4> x;
         for (long k = 0; k < n_nodes; ++k)
@@ -237,11 +242,11 @@ namespace tissuefem::geometry
         for (int k = 0; k < dim; ++k)
           for (int c = 0; c < 3; ++c)
             e[k][c] = x[k + 1][c] - x[0][c];
-        const double volume =
-          dim == 2 ? e[0][0] * e[1][1] - e[0][1] * e[1][0] :
-                     e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
-                       e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
-                       e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
+        const double volume
+          = dim == 2 ? e[0][0] * e[1][1] - e[0][1] * e[1][0]
+                     : e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1])
+                         - e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0])
+                         + e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
         if (volume < 0)
           ++inverted;
       }

@@ -121,7 +121,10 @@ namespace tissuefem::materials
         "stiffness is positive semi-definite on any state, inverted or "
         "beyond a limit point, and Newton's updates descend the energy. "
         "Newton converges more slowly (linearly) where the exact tangent is "
-        "indefinite. 'none': the exact tangent.");
+        "indefinite. With 'Formulation = mean dilatation' only the material "
+        "tangent at Fbar is projected, not the coupling through the cell's "
+        "mean dilatation, so there it is no guarantee. 'none': the exact "
+        "tangent.");
       prm.declare_entry(
         "Formulation",
         "displacement",

@@ -62,6 +62,7 @@ namespace tissuefem::output
           out.write(reinterpret_cast<const char *>(v->trilinos_vector()[0]),
                     size * sizeof(double));
         }
+      out.close();
       if (!out)
         error = "cannot write " + vector_file(fresh, rank);
     }
@@ -90,19 +91,25 @@ namespace tissuefem::output
           for (const auto &[t, name] : checkpoint.pvd_records)
             out << "pvd " << t << ' ' << name << '\n';
           out << "end\n";
+          out.close();
+          if (!out)
+            error = "cannot write '" + fresh + "/checkpoint.txt'";
         }
         // Swap in the new directory; a crash leaves either the old
         // checkpoint, or the new one as '.new' beside it.
         std::error_code code;
-        fs::remove_all(old, code);
-        if (fs::exists(directory))
-          fs::rename(directory, old, code);
-        if (!code)
-          fs::rename(fresh, directory, code);
-        if (code)
-          error = "cannot move '" + fresh + "' to '" + directory
-                  + "': " + code.message();
-        fs::remove_all(old, code);
+        if (error.empty())
+          {
+            fs::remove_all(old, code);
+            if (fs::exists(directory, code))
+              fs::rename(directory, old, code);
+            if (!code)
+              fs::rename(fresh, directory, code);
+            if (code)
+              error = "cannot move '" + fresh + "' to '" + directory
+                      + "': " + code.message();
+            fs::remove_all(old, code);
+          }
       }
     error = Utilities::MPI::broadcast(comm, error);
     if (!error.empty())
@@ -130,47 +137,54 @@ namespace tissuefem::output
                        + "'");
     bool ended = false;
     while (std::getline(in, line))
-      {
-        std::istringstream fields(line);
-        std::string        key, value;
-        fields >> key;
-        if (key == "end")
-          {
-            ended = true;
-            break;
-          }
-        fields >> value;
-        if (key == "step")
-          checkpoint.step = std::stoul(value);
-        else if (key == "time")
-          checkpoint.time = parse_double(value);
-        else if (key == "processes")
-          checkpoint.n_processes = std::stoul(value);
-        else if (key == "unknowns")
-          checkpoint.n_dofs = std::stoull(value);
-        else if (key == "integrator")
-          {
-            std::string rest;
-            std::getline(fields, rest);
-            checkpoint.integrator = value + rest;
-          }
-        else if (key == "damping_work")
-          checkpoint.damping_work = parse_double(value);
-        else if (key == "scalar")
-          checkpoint.integrator_scalars.push_back(parse_double(value));
-        else if (key == "file" || key == "pvd")
-          {
-            std::string name;
-            std::getline(fields >> std::ws, name);
-            if (key == "file")
-              checkpoint.file_sizes[name] = std::stoull(value);
-            else
-              checkpoint.pvd_records.emplace_back(parse_double(value), name);
-          }
-        else
-          throw InputError(where + "unknown entry '" + key
+      try
+        {
+          std::istringstream fields(line);
+          std::string        key, value;
+          fields >> key;
+          if (key == "end")
+            {
+              ended = true;
+              break;
+            }
+          fields >> value;
+          if (key == "step")
+            checkpoint.step = std::stoul(value);
+          else if (key == "time")
+            checkpoint.time = parse_double(value);
+          else if (key == "processes")
+            checkpoint.n_processes = std::stoul(value);
+          else if (key == "unknowns")
+            checkpoint.n_dofs = std::stoull(value);
+          else if (key == "integrator")
+            {
+              std::string rest;
+              std::getline(fields, rest);
+              checkpoint.integrator = value + rest;
+            }
+          else if (key == "damping_work")
+            checkpoint.damping_work = parse_double(value);
+          else if (key == "scalar")
+            checkpoint.integrator_scalars.push_back(parse_double(value));
+          else if (key == "file" || key == "pvd")
+            {
+              std::string name;
+              std::getline(fields >> std::ws, name);
+              if (key == "file")
+                checkpoint.file_sizes[name] = std::stoull(value);
+              else
+                checkpoint.pvd_records.emplace_back(parse_double(value), name);
+            }
+          else
+            throw InputError(where + "unknown entry '" + key
+                             + "' in checkpoint.txt");
+        }
+      catch (const std::logic_error &)
+        {
+          // std::stoul and friends on a corrupt entry.
+          throw InputError(where + "unreadable line '" + line
                            + "' in checkpoint.txt");
-      }
+        }
     if (!ended)
       throw InputError(where + "checkpoint.txt is truncated");
     if (checkpoint.n_processes != Utilities::MPI::n_mpi_processes(comm))

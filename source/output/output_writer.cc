@@ -74,7 +74,8 @@ namespace tissuefem::output
       "(atomically: a new one replaces the old one whole); 0: only when the "
       "run is interrupted by SIGINT or SIGTERM. 'tissuefem FILE.prm "
       "--restart <Directory>/checkpoint' continues the run; its outputs are "
-      "then those of an uninterrupted run, bit for bit (same FILE.prm and "
+      "then those of an uninterrupted run, bit for bit except the "
+      "wall-clock columns of statistics.csv (same FILE.prm and "
       "process count; quasistatic, backward Euler, and damped central "
       "difference without active region; no tool or mesh adaptation).");
     prm.leave_subsection();
@@ -218,8 +219,14 @@ namespace tissuefem::output
          {&statistics_file, &probes_file, &reactions_file, &summary})
       if (stream->is_open())
         stream->flush();
+    // (Root only: the sizes reach the other processes' checkpoint through
+    // its file; no call here may throw.)
     for (const std::string &file : files())
-      checkpoint.file_sizes[file] = std::filesystem::file_size(file);
+      {
+        std::error_code code;
+        const auto      size        = std::filesystem::file_size(file, code);
+        checkpoint.file_sizes[file] = code ? 0 : size;
+      }
   }
 
 
@@ -243,7 +250,11 @@ namespace tissuefem::output
                    || code)
             error = "'" + file + "' is shorter than at the checkpoint";
           else
-            std::filesystem::resize_file(file, found->second);
+            {
+              std::filesystem::resize_file(file, found->second, code);
+              if (code)
+                error = "cannot cut '" + file + "' back: " + code.message();
+            }
         }
     error = Utilities::MPI::broadcast(parallel_tools::communicator(), error);
     if (!error.empty())

@@ -250,6 +250,9 @@ namespace tissuefem::problems
   Elasticity<dim>::run()
   {
     setup();
+    // Only this problem finishes a step and checkpoints on SIGINT/SIGTERM;
+    // the others keep the default (immediate) end.
+    install_interruption_handlers();
     auto &screen = parallel_tools::screen();
     // The integrator may still reject its input (an explicit step above
     // the critical one): before any file exists.
@@ -365,10 +368,12 @@ namespace tissuefem::problems
           write_checkpoint(step, state);
         if (const int signal = interruption_requested())
           {
+            std::ostringstream time_text;
+            time_text << std::setprecision(10) << state.time;
             std::string what = "signal " + std::to_string(signal)
                                + " after step " + std::to_string(step)
-                               + ", t = " + std::to_string(state.time)
-                               + "; outputs written up to there";
+                               + ", t = " + time_text.str()
+                               + " (time units); outputs written up to there";
             if (why_no_checkpoint.empty())
               {
                 write_checkpoint(step, state);

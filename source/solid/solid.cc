@@ -637,8 +637,15 @@ namespace tissuefem::solid
       }
     if (cells.size() > 4)
       message << ", ...";
-    message << "; the material model is undefined for det F <= 0 (use "
-            << "'robust neo-Hookean' for scenes that invert elements)";
+    if (materials.mean_dilatation_formulation())
+      message << "; the mean dilatation formulation needs det F > 0 at every "
+                 "quadrature point (its Fbar = (theta/J)^(1/d) F); use "
+                 "'Formulation = displacement' with an invertible model for "
+                 "scenes that invert elements";
+    else
+      message << "; the material model is undefined for det F <= 0 (use "
+              << "'invertible neo-Hookean' or 'robust neo-Hookean' for scenes "
+                 "that invert elements)";
     throw InvertedElementError(message.str());
   }
 
@@ -729,167 +736,6 @@ namespace tissuefem::solid
     request.rows          = &lifting_constraints;
     request.inhomogeneous = true;
     assemble(request, residual);
-  }
-
-
-  template <int dim>
-  void
-  Solid<dim>::internal_force(const VectorType &u, VectorType &force)
-  {
-    make_ghosted(u, ghosted_u);
-    Request request;
-    request.u        = &ghosted_u;
-    request.external = false;
-    request.rows     = &no_constraints;
-    assemble(request, force);
-  }
-
-
-  template <int dim>
-  void
-  Solid<dim>::internal_force_on(const VectorType        &u,
-                                const std::vector<bool> &active_cells,
-                                VectorType              &force)
-  {
-    AssertDimension(active_cells.size(), cache.cells().size());
-    make_ghosted(u, ghosted_u);
-    Request request;
-    request.u        = &ghosted_u;
-    request.external = false;
-    request.rows     = &no_constraints;
-    request.cells    = &active_cells;
-    assemble(request, force);
-  }
-
-
-  template <int dim>
-  std::vector<bool>
-  Solid<dim>::cells_touching(const VectorType &mask)
-  {
-    make_ghosted(mask, ghosted_w);
-    const double     *values = ghosted_w.trilinos_vector()[0];
-    std::vector<bool> active(cache.cells().size(), false);
-    for (unsigned int c = 0; c < active.size(); ++c)
-      for (unsigned int i = 0; i < cache.n_dofs; ++i)
-        if (values[access.ghost_index[c * cache.n_dofs + i]] != 0)
-          {
-            active[c] = true;
-            break;
-          }
-    return active;
-  }
-
-
-  template <int dim>
-  void
-  Solid<dim>::mark_dofs_of(const std::vector<bool> &cells, VectorType &mask)
-  {
-    AssertDimension(cells.size(), cache.cells().size());
-    // Counts from every process's cells (ghost dofs included), then 0/1
-    // in a vector laid out like the unknowns.
-    VectorType counts;
-    discretization.initialize_assembly_vector(counts);
-    const std::vector<double> ones(cache.n_dofs, 1.);
-    for (unsigned int c = 0; c < cells.size(); ++c)
-      if (cells[c])
-        no_constraints.distribute_local_to_global(ones.begin(),
-                                                  ones.end(),
-                                                  cache.dofs(c),
-                                                  counts);
-    counts.compress(VectorOperation::add);
-    initialize_vector(mask);
-    const double *from = counts.trilinos_vector()[0];
-    double       *to   = mask.trilinos_vector()[0];
-    for (unsigned int i = 0; i < mask.locally_owned_size(); ++i)
-      to[i] = from[i] > 0 ? 1. : 0.;
-  }
-
-
-  template <int dim>
-  void
-  Solid<dim>::external_force(const double time, VectorType &force)
-  {
-    // Most surgical scenes have no load but the tool: skip the pass.
-    if (!body_force_present && boundary_conditions.neumann.empty()
-        && boundary_conditions.gravity.norm() == 0)
-      {
-        initialize_vector(force);
-        return;
-      }
-    Request request;
-    request.internal = false;
-    request.time     = time;
-    request.rows     = &no_constraints;
-    assemble(request, force);
-    force *= -1.;
-  }
-
-
-  template <int dim>
-  std::vector<double>
-  Solid<dim>::reaction_forces(
-    const VectorType                      &u,
-    const VectorType                      &acceleration,
-    const double                           time,
-    const std::vector<types::boundary_id> &boundary_ids)
-  {
-    std::vector<double> forces(boundary_ids.size() * dim, 0.);
-    if (boundary_ids.empty())
-      return forces;
-    VectorType residual;
-    unconstrained_residual(u, acceleration, time, residual);
-    for (unsigned int b = 0; b < boundary_ids.size(); ++b)
-      for (unsigned int c = 0; c < dim; ++c)
-        {
-          std::vector<bool> mask(dim, false);
-          mask[c] = true;
-          IndexSet dofs
-            = DoFTools::extract_boundary_dofs(discretization.dof_handler,
-                                              ComponentMask(mask),
-                                              {boundary_ids[b]});
-          dofs = dofs & discretization.locally_owned;
-          for (const auto dof : dofs)
-            forces[b * dim + c] += residual[dof];
-        }
-    Utilities::MPI::sum(forces, parallel_tools::communicator(), forces);
-    return forces;
-  }
-
-
-  template <int dim>
-  void
-  Solid<dim>::unconstrained_residual(const VectorType &u,
-                                     const VectorType &acceleration,
-                                     const double      time,
-                                     VectorType       &residual)
-  {
-    make_ghosted(u, ghosted_u);
-    make_ghosted(acceleration, ghosted_w);
-    Request request;
-    request.u       = &ghosted_u;
-    request.inertia = &ghosted_w;
-    request.time    = time;
-    request.rows    = &no_constraints;
-    assemble(request, residual);
-  }
-
-
-  template <int dim>
-  std::vector<double>
-  Solid<dim>::held_force(const VectorType &u,
-                         const VectorType &acceleration,
-                         const double      time)
-  {
-    std::vector<double> force(dim, 0.);
-    if (!boundary_conditions.held)
-      return force;
-    VectorType residual;
-    unconstrained_residual(u, acceleration, time, residual);
-    for (const auto &[dof, vertex, component] : held_dofs)
-      if (discretization.locally_owned.is_element(dof))
-        force[component] -= residual[dof];
-    Utilities::MPI::sum(force, parallel_tools::communicator(), force);
-    return force;
   }
 
 

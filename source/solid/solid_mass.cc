@@ -162,6 +162,18 @@ namespace tissuefem::solid
             energy = std::numeric_limits<double>::infinity();
             break;
           }
+        // Where the model is undefined (det F <= 0, no inversion) the state
+        // is inadmissible, as assembly says by throwing.
+        bool admissible = true;
+        if (!material.admits_inversion())
+          for (unsigned int q = 0; q < n_q; ++q)
+            if (!(determinant(F[q]) > 0))
+              admissible = false;
+        if (!admissible)
+          {
+            energy = std::numeric_limits<double>::infinity();
+            break;
+          }
         for (unsigned int q = 0; q < n_q; ++q)
           energy += material.energy_density(
                       F[q], fibre_field.at(cell->active_cell_index(), q))

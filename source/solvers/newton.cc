@@ -38,9 +38,12 @@ namespace tissuefem::solvers
     prm.declare_entry("Line search steps",
                       "8",
                       Patterns::Integer(0, 50),
-                      "Halvings of the Newton update tried while the residual "
-                      "norm does not decrease; the last one is taken even if "
-                      "it does not. 0 takes full steps.");
+                      "Step-length reductions tried per Newton iteration "
+                      "('Line search = residual norm': halvings while the "
+                      "residual norm does not decrease; 'energy': factors "
+                      "between 0.1 and 0.5 from quadratic interpolation "
+                      "until Armijo's condition holds); the last one is "
+                      "taken even if it fails. 0 takes full steps.");
     prm.declare_entry(
       "Line search",
       "energy",
@@ -209,7 +212,14 @@ namespace tissuefem::solvers
                     {
                       timed_assemble(trial, trial_residual, true);
                       const double trial_norm = checked_l2_norm(trial_residual);
-                      if (std::isfinite(trial_norm) && trial_norm < 0.5 * norm)
+                      // ... and the energy did not rise by more than the
+                      // first-order change (a saddle would).
+                      const double rise = trial_energy - current_energy;
+                      if (std::isfinite(trial_norm) && trial_norm < 0.5 * norm
+                          && rise <= -slope
+                                       + 1e-8
+                                           * std::max(std::abs(current_energy),
+                                                      std::abs(trial_energy)))
                         {
                           current_energy = trial_energy;
                           assembled      = true;

@@ -39,7 +39,8 @@ namespace tissuefem::time
       "Optimal Newton iterations",
       "0",
       Patterns::Integer(0, 100),
-      "Implicit one-step methods (quasistatic, backward Euler): the Newton "
+      "Implicit one-step methods (quasistatic, fixed-step backward Euler): "
+      "the Newton "
       "iterations per step the step controller aims at, as FEBio's automatic "
       "time stepper: after a step that took n iterations the next step is "
       "h sqrt(optimal/n), between h/2 and 2h and at most 'Time step'. Steps "

@@ -18,8 +18,10 @@ namespace tissuefem::time
    * Newton iteration that carries the boundary motion of the step into the
    * body through the Jacobian. A step whose
    * Newton iteration fails is retried with half the step size, at most
-   * 'Maximum step halvings' times; after a reduced step the step size grows
-   * back by factors of two towards 'Time step'.
+   * 'Maximum step halvings' times. The next step size comes from
+   * next_step_size(): back towards 'Time step' by factors of two (or as
+   * 'Optimal Newton iterations' says), never straight back to a size that
+   * just failed.
    */
   class ImplicitOneStep : public Interface
   {
