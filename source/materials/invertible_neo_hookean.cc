@@ -217,16 +217,21 @@ namespace tissuefem::materials
       for (unsigned int b = 0; b < dim; ++b)
         Ahat[a][a][b][b] = H[a][b];
     const double scale = 1e-8 * std::max(1., std::abs(sigma[0]));
+    // l and its derivatives at each singular value, and L = sum l, once.
+    std::array<std::array<double, 3>, dim> l;
+    double                                 L = 0;
+    for (unsigned int i = 0; i < dim; ++i)
+      {
+        l[i] = extended_log(sigma[i]);
+        L += l[i][0];
+      }
     for (unsigned int a = 0; a < dim; ++a)
       for (unsigned int b = 0; b < dim; ++b)
         if (a != b)
           {
             // g_a - g_b = mu (sigma_a - sigma_b) + (lambda L - mu)(l'_a -
             // l'_b): the quotient without cancellation.
-            double L = 0;
-            for (unsigned int i = 0; i < dim; ++i)
-              L += extended_log(sigma[i])[0];
-            const auto la = extended_log(sigma[a]), lb = extended_log(sigma[b]);
+            const auto  &la = l[a], &lb = l[b];
             const double gap = sigma[a] - sigma[b];
             const double quotient
               = std::abs(gap) > scale
