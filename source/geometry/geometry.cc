@@ -367,7 +367,20 @@ namespace tissuefem::geometry
       read_mesh_file(parameters, triangulation);
     else
       build_box(parameters, triangulation);
-    triangulation.refine_global(parameters.global_refinements);
+    if (parameters.global_refinements > 0
+        && !triangulation.all_reference_cells_are_hyper_cube())
+      {
+        // deal.II 9.4 crashes refining simplices under the mesh smoothing
+        // the adaptive meshes need (limit_level_difference_at_vertices):
+        // refine a flat copy without smoothing and flatten it back.
+        Triangulation<dim> plain;
+        GridGenerator::flatten_triangulation(triangulation, plain);
+        plain.refine_global(parameters.global_refinements);
+        triangulation.clear();
+        GridGenerator::flatten_triangulation(plain, triangulation);
+      }
+    else
+      triangulation.refine_global(parameters.global_refinements);
     apply_boundary_predicates(parameters.boundary_id_predicates,
                               parameters.source == "file",
                               triangulation);

@@ -1,7 +1,9 @@
+#include <deal.II/base/multithread_info.h>
 #include <deal.II/base/timer.h>
 
 #include <tissuefem/base/interruption.h>
 #include <tissuefem/base/parameter_tools.h>
+#include <tissuefem/output/run_record.h>
 #include <tissuefem/problems/elasticity.h>
 #include <tissuefem/solid/quantities.h>
 
@@ -34,6 +36,7 @@ namespace tissuefem::problems
     output_parameters.parse_parameters(prm);
     refinement_parameters.parse_parameters(prm);
     tool_parameters.parse_parameters(prm);
+    manufactured_parameters.parse_parameters(prm);
   }
 
 
@@ -44,6 +47,7 @@ namespace tissuefem::problems
     // The other subsections this problem reads are shared with other
     // problems and declared by the application.
     tool::ToolParameters::declare_parameters(prm);
+    boundary::ManufacturedParameters::declare_parameters(prm);
   }
 
 
@@ -58,6 +62,18 @@ namespace tissuefem::problems
     boundary_conditions = std::make_unique<boundary::BoundaryConditions<dim>>(
       boundary_parameters);
     boundary_conditions->check_boundary_ids(triangulation);
+    if (manufactured_parameters.enabled)
+      {
+        require(!tool_parameters.enabled,
+                "Manufactured solution/Enabled",
+                "cannot be combined with a tool");
+        manufactured = std::make_unique<boundary::ManufacturedSolution<dim>>(
+          manufactured_parameters,
+          *materials,
+          triangulation,
+          time_parameters.integrator != "quasistatic");
+        manufactured->impose_on(*boundary_conditions);
+      }
     discretization = std::make_unique<solid::Discretization<dim>>(triangulation,
                                                                   fe_parameters,
                                                                   dim);
@@ -247,8 +263,88 @@ namespace tissuefem::problems
 
   template <int dim>
   void
+  Elasticity<dim>::record_error(const time::State &state)
+  {
+    if (!manufactured)
+      return;
+    VectorType u;
+    discretization->initialize_vector(u, true);
+    u            = state.u;
+    const auto e = manufactured->errors(*discretization, u, state.time);
+    auto      &h = error_history;
+    h.max_l2     = std::max(h.max_l2, e.l2);
+    // Rectangle rule on the step just taken: sum over steps of dt e^2.
+    h.l2_time_integral += (state.time - h.last_time) * e.l2 * e.l2;
+    h.last_time = state.time;
+    h.last      = e;
+  }
+
+
+  template <int dim>
+  void
+  Elasticity<dim>::write_run_record(const time::State  &state,
+                                    std::vector<double> step_seconds,
+                                    const double        assembly_seconds,
+                                    const double        solve_seconds,
+                                    const unsigned int  newton_iterations,
+                                    const unsigned int  rejected_attempts,
+                                    const double        peak_bytes,
+                                    const double        wall_seconds)
+  {
+    const double steps_wall
+      = std::accumulate(step_seconds.begin(), step_seconds.end(), 0.);
+    std::sort(step_seconds.begin(), step_seconds.end());
+    const auto percentile = [&](const double p) {
+      return step_seconds.empty() ?
+               0. :
+               step_seconds[std::min<std::size_t>(
+                 step_seconds.size() - 1,
+                 static_cast<std::size_t>(p * step_seconds.size()))];
+    };
+    const double stored  = solid->stored_energy(state.u);
+    const double kinetic = solid->kinetic_energy(state.v);
+    if (!parallel_tools::is_root())
+      return;
+    output::RunRecord r;
+    r.add("processes", parallel_tools::n_processes(), "MPI processes");
+    r.add("threads", MultithreadInfo::n_threads(), "threads per process");
+    r.add("cells", triangulation.n_active_cells(), "active cells at the end");
+    r.add("unknowns", solid->n_dofs(), "displacement unknowns at the end");
+    r.add("steps", step_seconds.size(), "steps reported (rows of statistics.csv)");
+    r.add("simulated time", state.time, "time units reached");
+    r.add("newton iterations", newton_iterations, "sum over steps");
+    r.add("rejected attempts", rejected_attempts, "sum over steps");
+    r.add("wall total", wall_seconds, "s, set-up, steps and output");
+    r.add("wall steps", steps_wall, "s, sum of the integrator's steps");
+    r.add("wall assembly", assembly_seconds, "s, residual and Jacobian assembly in the steps");
+    r.add("wall solve", solve_seconds, "s, linear solves in the steps");
+    r.add("step median", percentile(0.5), "s wall per step, median");
+    r.add("step p95", percentile(0.95), "s wall per step, 95th percentile");
+    r.add("step max", percentile(1.), "s wall per step, largest");
+    r.add("peak memory", peak_bytes / 1e6, "MB resident, sum over processes");
+    r.add("stored energy", stored, "energy units, int Psi dV at the end");
+    r.add("kinetic energy", kinetic, "energy units, 1/2 v.M v at the end");
+    if (manufactured)
+      {
+        const auto &e = error_history.last;
+        r.add("L2 error", e.l2, "length units, ||u_h - u||_L2 at the end");
+        r.add("H1 error", e.h1, "||Grad(u_h - u)||_L2 at the end (length^(dim/2))");
+        r.add("relative L2 error", e.l2 / e.l2_exact, "||u_h - u||/||u|| at the end");
+        r.add("relative H1 error", e.h1 / e.h1_exact, "||Grad(u_h - u)||/||Grad u|| at the end");
+        r.add("max L2 error", error_history.max_l2, "length units, largest over the steps");
+        r.add("L2L2 error",
+              std::sqrt(error_history.l2_time_integral),
+              "(sum over steps of dt ||u_h - u||_L2^2)^(1/2)");
+      }
+    r.write(output_parameters.directory + "/run.txt");
+  }
+
+
+  template <int dim>
+  void
   Elasticity<dim>::run()
   {
+    const auto run_start = std::chrono::steady_clock::now();
     setup();
     // Only this problem finishes a step and checkpoints on SIGINT/SIGTERM;
     // the others keep the default (immediate) end.
@@ -322,10 +418,16 @@ namespace tissuefem::problems
         if (tool)
           summarize_tool(state.time, tool->record(state, *solid));
       }
+    record_error(state);
 
     const double        end_time = time_parameters.end_time;
     std::vector<double> step_seconds;
     bool                mesh_changed = false;
+    struct
+    {
+      double       assembly = 0, solve = 0;
+      unsigned int newton = 0, rejected = 0;
+    } totals;
     while (state.time < end_time * (1 - 1e-12))
       {
         time::StepReport report;
@@ -348,6 +450,10 @@ namespace tissuefem::problems
                                   .count();
         }
         step_seconds.push_back(report.step_seconds);
+        totals.assembly += report.assembly_seconds;
+        totals.solve += report.solve_seconds;
+        totals.newton += report.newton_iterations;
+        totals.rejected += report.rejected_attempts;
         report.stored_energy  = solid->stored_energy(state.u);
         report.kinetic_energy = solid->kinetic_energy(state.v);
         ++step;
@@ -361,6 +467,7 @@ namespace tissuefem::problems
                << report.residual_norm << std::defaultfloat
                << std::setprecision(6) << std::endl;
         writer->write_step(step, report, state, reactions, mesh_changed);
+        record_error(state);
         if (tool)
           summarize_tool(state.time, tool->record(state, *solid));
         const unsigned int interval = output_parameters.checkpoint_interval;
@@ -426,6 +533,26 @@ namespace tissuefem::problems
            << std::endl;
     if (tool)
       screen << tool->summary() << std::endl;
+    if (manufactured)
+      {
+        const auto &e = error_history.last;
+        screen << "error against the manufactured solution at t = "
+               << state.time << ": L2 " << e.l2 << " (length units; relative "
+               << e.l2 / e.l2_exact << "), H1 seminorm " << e.h1
+               << " (relative " << e.h1 / e.h1_exact << "); largest L2 error "
+               << "over the steps " << error_history.max_l2 << std::endl;
+      }
+    write_run_record(
+      state,
+      step_seconds,
+      totals.assembly,
+      totals.solve,
+      totals.newton,
+      totals.rejected,
+      peak_bytes,
+      std::chrono::duration<double>(std::chrono::steady_clock::now()
+                                    - run_start)
+        .count());
     const auto &linear = linear_solver->statistics();
     screen << "linear solver: " << linear.solves << " solves, "
            << linear.iterations << " Krylov iterations, " << linear.setups

@@ -43,12 +43,12 @@ namespace tissuefem::boundary
     {
       types::boundary_id                   id;
       ComponentMask                        mask;
-      std::unique_ptr<FunctionParser<dim>> displacement;
+      std::unique_ptr<Function<dim>> displacement;
     };
     struct Neumann
     {
       types::boundary_id                   id;
-      std::unique_ptr<FunctionParser<dim>> traction;
+      std::unique_ptr<Function<dim>> traction;
     };
 
     /// Sets the time at which all expressions are evaluated.
@@ -62,13 +62,13 @@ namespace tissuefem::boundary
     std::vector<Dirichlet> dirichlet;
     std::vector<Neumann>   neumann;
     /// Force per unit reference volume (N/m^3 if SI), added to rho_0 * gravity.
-    std::unique_ptr<FunctionParser<dim>> body_force;
+    std::unique_ptr<Function<dim>> body_force;
     /// Whether every body force expression is the literal "0".
     bool body_force_is_zero;
     /// Acceleration of gravity (m/s^2 if SI); multiplied by rho_0.
     Tensor<1, dim>                       gravity;
-    std::unique_ptr<FunctionParser<dim>> initial_displacement;
-    std::unique_ptr<FunctionParser<dim>> initial_velocity;
+    std::unique_ptr<Function<dim>> initial_displacement;
+    std::unique_ptr<Function<dim>> initial_velocity;
 
     /**
      * Vertices held by a tool (the user's grasp): every displacement

@@ -4,6 +4,7 @@
 
 #include <tissuefem/adaptation/mesh_adaptation.h>
 #include <tissuefem/boundary/boundary_conditions.h>
+#include <tissuefem/boundary/manufactured_solution.h>
 #include <tissuefem/geometry/geometry.h>
 #include <tissuefem/materials/material_set.h>
 #include <tissuefem/output/output_writer.h>
@@ -54,6 +55,7 @@ namespace tissuefem::problems
     output::OutputParameters             output_parameters;
     adaptation::MeshRefinementParameters refinement_parameters;
     tool::ToolParameters                 tool_parameters;
+    boundary::ManufacturedParameters     manufactured_parameters;
 
     parallel::shared::Triangulation<dim>               triangulation;
     std::unique_ptr<materials::MaterialSet<dim>>       materials;
@@ -65,6 +67,30 @@ namespace tissuefem::problems
     std::unique_ptr<output::OutputWriter<dim>>         writer;
     std::unique_ptr<adaptation::MeshAdaptation<dim>>   adaptation;
     std::unique_ptr<tool::GraspTool<dim>>              tool;
+    std::unique_ptr<boundary::ManufacturedSolution<dim>> manufactured;
+
+    /// Errors against the manufactured solution, accumulated over steps.
+    struct ErrorHistory
+    {
+      double max_l2 = 0, l2_time_integral = 0, last_time = 0;
+      typename boundary::ManufacturedSolution<dim>::Errors last{0, 0, 0, 0};
+    } error_history;
+
+    /// Measures the error of @p state against the manufactured solution.
+    void
+    record_error(const time::State &state);
+
+    /// Writes '<Output/Directory>/run.txt' (output::RunRecord): sizes,
+    /// wall times, memory, energies and errors of the finished run.
+    void
+    write_run_record(const time::State  &state,
+                     std::vector<double> step_seconds,
+                     const double        assembly_seconds,
+                     const double        solve_seconds,
+                     const unsigned int  newton_iterations,
+                     const unsigned int  rejected_attempts,
+                     const double        peak_bytes,
+                     const double        wall_seconds);
 
     /// Lets the tool grasp or release if due (before a step).
     void

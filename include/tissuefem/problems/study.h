@@ -1,0 +1,67 @@
+#pragma once
+
+#include <tissuefem/problems/interface.h>
+#include <tissuefem/study/picker.h>
+#include <tissuefem/study/quantity.h>
+#include <tissuefem/study/report.h>
+#include <tissuefem/study/variants.h>
+
+namespace tissuefem::problems
+{
+  /**
+   * 'Problem = study': runs one elasticity scene over a set of variants
+   * (the Cartesian product of 'Study/Axes'), each as a tissuefem child
+   * process in '<Study/Directory>/variant-K', and records for each its
+   * size, wall times, memory and error in a quantity of interest; writes
+   * results.csv, convergence tables with observed orders, gnuplot charts
+   * (error against unknowns and against wall time, with the Pareto front)
+   * and a summary; then optionally picks the cheapest variant that meets
+   * an error tolerance and a step budget, and runs the scene with it.
+   * Finished variants are kept: running the study again resumes it.
+   */
+  template <int dim>
+  class Study : public Interface
+  {
+  public:
+    Study(ParameterHandler &prm, const RunContext &context);
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    void
+    setup() override;
+
+    void
+    run() override;
+
+  private:
+    RunContext                 context;
+    std::string scene, directory, runs_directory, launcher, title;
+    std::vector<study::Setting> settings;
+    std::vector<study::Axis>    axes;
+    unsigned int                rate_axis;
+    std::string                 rates_against;
+    std::vector<double>         tolerances;
+    unsigned int                threads;
+    study::QuantityParameters   quantity;
+    study::PickerParameters     picker;
+    std::vector<study::Variant> variants;
+    /// 'Dimension' of the scene (of its first variant), for orders in h.
+    unsigned int scene_dimension = dim;
+
+    /// The --set arguments of a run with @p extra settings into @p output.
+    std::vector<std::string>
+    arguments(const std::vector<study::Setting> &extra,
+              const std::string                 &output) const;
+
+    /**
+     * Runs (or, if it finished before with the same settings, reuses) one
+     * variant in @p output; returns its row. Throws Interrupted if the run
+     * was interrupted by a signal.
+     */
+    study::Row
+    run_variant(const study::Variant &variant,
+                const std::string    &output,
+                bool                 &reused) const;
+  };
+} // namespace tissuefem::problems

@@ -1,0 +1,71 @@
+#pragma once
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <string>
+#include <vector>
+
+namespace tissuefem::study
+{
+  using namespace dealii;
+
+  /// One assignment 'Subsection/Name = value' given to a run with --set.
+  struct Setting
+  {
+    std::string path;
+    std::string value;
+
+    /// "Subsection/Name=value", as --set takes it.
+    std::string
+    assignment() const
+    {
+      return path + "=" + value;
+    }
+  };
+
+  /**
+   * One choice along an axis: a label and the settings it makes. For an
+   * axis over one parameter the label is the value; a named axis lists its
+   * settings in braces.
+   */
+  struct AxisValue
+  {
+    std::string          label;
+    std::vector<Setting> settings;
+  };
+
+  struct Axis
+  {
+    std::string            name;
+    std::vector<AxisValue> values;
+  };
+
+  /// One run of a study: one value of every axis.
+  struct Variant
+  {
+    unsigned int             index;
+    std::string              label;
+    std::vector<std::string> axis_labels;
+    std::vector<Setting>     settings;
+  };
+
+  /// Settings from "Path/Name = value; Path/Name = value" (';' separates,
+  /// '&' also does inside braces). Throws InputError naming @p parameter.
+  std::vector<Setting>
+  parse_settings(const std::string &text,
+                 const char         separator,
+                 const std::string &parameter);
+
+  /**
+   * Axes from the 'Study/Axes' syntax: axes separated by '|'; each is
+   * 'Subsection/Name: v1; v2; ...' (one parameter) or 'name: label1
+   * {P/N = v & P/N = v}; label2 {...}' (several parameters per value).
+   */
+  std::vector<Axis>
+  parse_axes(const std::string &text, const std::string &parameter);
+
+  /// Every combination of one value per axis; the first axis varies
+  /// slowest. Settings of later axes come after (and override) earlier ones.
+  std::vector<Variant>
+  cartesian_product(const std::vector<Axis> &axes);
+} // namespace tissuefem::study

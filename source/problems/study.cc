@@ -1,0 +1,415 @@
+#include <tissuefem/base/application.h>
+#include <tissuefem/base/input_error.h>
+#include <tissuefem/base/interruption.h>
+#include <tissuefem/base/parallel.h>
+#include <tissuefem/base/parameter_tools.h>
+#include <tissuefem/output/run_record.h>
+#include <tissuefem/problems/study.h>
+#include <tissuefem/study/runner.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+namespace tissuefem::problems
+{
+  template <int dim>
+  void
+  Study<dim>::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Study");
+    prm.declare_entry("Scene",
+                      "",
+                      Patterns::FileName(),
+                      "The elasticity scene (.prm) every variant runs, "
+                      "relative to this file's directory.");
+    prm.declare_entry("Settings",
+                      "",
+                      Patterns::Anything(),
+                      "'Subsection/Name = value; ...' applied to every run "
+                      "of the study (e.g. 'Output/VTU interval = 0').");
+    prm.declare_entry(
+      "Axes",
+      "",
+      Patterns::Anything(),
+      "The variants: the Cartesian product of the axes, separated by '|'. "
+      "An axis is 'Subsection/Name: v1; v2; ...' (values of one parameter) "
+      "or 'name: label1 {Subsection/Name = v & Subsection/Name = v}; label2 "
+      "{...}' (several settings per value). Later axes override earlier "
+      "ones where they set the same parameter.");
+    prm.declare_entry("Rate axis",
+                      "",
+                      Patterns::Anything(),
+                      "The axis whose values form one convergence series "
+                      "(one line in each chart); variants that agree on "
+                      "every other axis are one series. Empty: the first "
+                      "axis.");
+    prm.declare_entry("Rates against",
+                      "unknowns",
+                      Patterns::Selection("unknowns|time step|none"),
+                      "Observed orders: of the error in h, estimated as "
+                      "N^(-1/dim) from the unknowns N; or in the mean time "
+                      "step (simulated time / steps); or none.");
+    prm.declare_entry("Tolerances",
+                      "",
+                      Patterns::List(Patterns::Double(0)),
+                      "Errors for which the summary names the fastest "
+                      "variant that is that accurate.");
+    prm.declare_entry("Directory",
+                      "study",
+                      Patterns::FileName(),
+                      "Where results.csv, rates.csv, convergence.txt, the "
+                      "charts, summary.txt and one directory per variant "
+                      "go (relative to the working directory).");
+    prm.declare_entry("Runs directory",
+                      "",
+                      Patterns::FileName(),
+                      "Where the variants' runs go ('variant-K' each, "
+                      "'reference'); empty: 'Directory'. A study of another "
+                      "quantity over the same runs points here to the first "
+                      "study's runs and reuses them.");
+    prm.declare_entry("Launcher",
+                      "",
+                      Patterns::Anything(),
+                      "Words put before each run's command, e.g. 'mpirun "
+                      "-np 2' for runs on two MPI processes; the study "
+                      "itself runs on one.");
+    prm.declare_entry("Threads per variant",
+                      "1",
+                      Patterns::Integer(0, 1024),
+                      "Threads per process of each run (0: all cores); one "
+                      "by default so that the wall times of different "
+                      "variants are comparable on a shared machine.");
+    prm.declare_entry("Title",
+                      "",
+                      Patterns::Anything(),
+                      "Title of the charts (empty: the scene's file name).");
+    study::QuantityParameters::declare_parameters(prm);
+    study::PickerParameters::declare_parameters(prm);
+    prm.leave_subsection();
+  }
+
+
+  template <int dim>
+  Study<dim>::Study(ParameterHandler &prm, const RunContext &context)
+      : context(context)
+  {
+    require(parallel_tools::n_processes() == 1,
+            "Problem",
+            "a study runs on one process; its variants can use MPI through "
+            "'Study/Launcher'");
+    prm.enter_subsection("Study");
+    scene = prm.get("Scene");
+    require(!scene.empty(), "Study/Scene", "is empty");
+    if (!scene.empty() && scene[0] != '/' && !context.parameter_directory.empty())
+      scene = context.parameter_directory + "/" + scene;
+    settings      = study::parse_settings(prm.get("Settings"), ';', "Study/Settings");
+    axes          = study::parse_axes(prm.get("Axes"), "Study/Axes");
+    rates_against = prm.get("Rates against");
+    directory     = prm.get("Directory");
+    runs_directory = prm.get("Runs directory");
+    launcher      = prm.get("Launcher");
+    threads       = prm.get_integer("Threads per variant");
+    title         = prm.get("Title");
+    if (title.empty())
+      title = std::filesystem::path(scene).filename().string();
+    const std::string rate_name = prm.get("Rate axis");
+    rate_axis                   = 0;
+    if (!rate_name.empty())
+      {
+        rate_axis = axes.size();
+        for (unsigned int a = 0; a < axes.size(); ++a)
+          if (axes[a].name == rate_name)
+            rate_axis = a;
+        require(rate_axis < axes.size(),
+                "Study/Rate axis",
+                "'" + rate_name + "' is none of the axes' names");
+      }
+    for (const auto &t : split_and_trim(prm.get("Tolerances"), ','))
+      if (!t.empty())
+        tolerances.push_back(std::stod(t));
+    quantity.parse_parameters(prm);
+    picker.parse_parameters(prm);
+    prm.leave_subsection();
+    require(!axes.empty(), "Study/Axes", "is empty: a study needs variants");
+    require(!directory.empty(), "Study/Directory", "is empty");
+    if (runs_directory.empty())
+      runs_directory = directory;
+    variants = study::cartesian_product(axes);
+  }
+
+
+  template <int dim>
+  std::vector<std::string>
+  Study<dim>::arguments(const std::vector<study::Setting> &extra,
+                        const std::string                 &output) const
+  {
+    std::vector<std::string> args = {scene};
+    for (const auto *list : {&settings, &extra})
+      for (const auto &s : *list)
+        {
+          args.push_back("--set");
+          args.push_back(s.assignment());
+        }
+    args.push_back("--set");
+    args.push_back("Output/Directory=" + output);
+    if (threads > 0)
+      {
+        args.push_back("--threads");
+        args.push_back(std::to_string(threads));
+      }
+    return args;
+  }
+
+
+  template <int dim>
+  void
+  Study<dim>::setup()
+  {
+    // Every run's parameters must be valid before the first one starts: a
+    // typo in the last variant must not cost the whole study.
+    std::vector<study::Variant> all = variants;
+    if (quantity.reference == "reference run")
+      all.push_back({0,
+                     "reference",
+                     {},
+                     study::parse_settings(quantity.reference_settings,
+                                           ';',
+                                           "Study/Reference settings")});
+    for (const auto &v : all)
+      {
+        ParameterHandler prm;
+        declare_all_parameters(prm);
+        std::vector<std::string> overrides;
+        for (const auto &s : settings)
+          overrides.push_back(s.assignment());
+        for (const auto &s : v.settings)
+          overrides.push_back(s.assignment());
+        try
+          {
+            read_parameters(prm, scene, overrides);
+          }
+        catch (const InputError &e)
+          {
+            throw InputError("Study/Scene '" + scene + "' with variant '"
+                             + v.label + "': " + e.what());
+          }
+        if (&v == &all.front())
+          scene_dimension = prm.get_integer("Dimension");
+        require(prm.get("Problem") == "elasticity",
+                "Study/Scene",
+                "'" + scene + "' is no elasticity scene");
+        if (quantity.reference == "manufactured")
+          {
+            prm.enter_subsection("Manufactured solution");
+            const bool enabled = prm.get_bool("Enabled");
+            prm.leave_subsection();
+            require(enabled,
+                    "Study/Reference",
+                    "'manufactured' needs 'Manufactured solution/Enabled = "
+                    "true' in the scene (variant '" + v.label + "')");
+          }
+      }
+  }
+
+
+  template <int dim>
+  study::Row
+  Study<dim>::run_variant(const study::Variant &variant,
+                          const std::string    &output,
+                          bool                 &reused) const
+  {
+    namespace fs = std::filesystem;
+    std::ostringstream settings_text;
+    for (const auto &a : arguments(variant.settings, output))
+      settings_text << a << ' ';
+    const std::string stamp = output + "/study.txt";
+    study::Row        row;
+    row.variant = variant;
+    reused      = false;
+    int exit    = -1;
+    if (std::ifstream in(stamp); in)
+      {
+        std::string line;
+        std::getline(in, line);
+        if (line == "command " + settings_text.str())
+          in >> exit >> row.wall_seconds, reused = static_cast<bool>(in);
+      }
+    if (!reused)
+      {
+        std::error_code ec;
+        fs::remove_all(output, ec);
+        fs::create_directories(output, ec);
+        require(!ec, "Study/Directory", "cannot create '" + output + "'");
+        const study::RunOutcome outcome
+          = study::run_child(study::own_executable(),
+                             arguments(variant.settings, output),
+                             launcher,
+                             output + "/log.txt");
+        if (outcome.exit_status > 128)
+          throw Interrupted(outcome.exit_status - 128,
+                            "the study stopped during variant "
+                              + std::to_string(variant.index) + " ("
+                              + variant.label
+                              + "); run it again to resume (finished "
+                                "variants are kept)");
+        exit             = outcome.exit_status;
+        row.wall_seconds = outcome.wall_seconds;
+        // The stamp last, through a temporary name: it marks the variant
+        // as done.
+        {
+          std::ofstream out(stamp + ".new");
+          out << "command " << settings_text.str() << '\n'
+              << exit << ' ' << std::setprecision(17) << row.wall_seconds
+              << '\n';
+        }
+        fs::rename(stamp + ".new", stamp, ec);
+      }
+    row.finished = exit == 0 && fs::exists(output + "/run.txt");
+    row.status   = row.finished ? "finished" : study::describe_exit(exit);
+    if (row.finished)
+      row.record = output::RunRecord::read(output + "/run.txt");
+    return row;
+  }
+
+
+  template <int dim>
+  void
+  Study<dim>::run()
+  {
+    setup();
+    install_interruption_handlers();
+    auto &screen = parallel_tools::screen();
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    fs::create_directories(directory, ec);
+    require(!ec, "Study/Directory", "cannot create '" + directory + "'");
+    fs::create_directories(runs_directory, ec);
+    require(!ec,
+            "Study/Runs directory",
+            "cannot create '" + runs_directory + "'");
+
+    const auto start = std::chrono::steady_clock::now();
+    const auto elapsed = [&] {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now()
+                                           - start)
+        .count();
+    };
+    std::string reference_directory;
+    if (quantity.reference == "reference run")
+      {
+        reference_directory = runs_directory + "/reference";
+        screen << "study: reference run (" << quantity.reference_settings
+               << ")" << std::endl;
+        bool       reused;
+        const auto reference = run_variant(
+          {0,
+           "reference",
+           {},
+           study::parse_settings(quantity.reference_settings,
+                                 ';',
+                                 "Study/Reference settings")},
+          reference_directory,
+          reused);
+        if (!reference.finished)
+          throw SolverError("the reference run did not finish ("
+                            + reference.status + "; see "
+                            + reference_directory + "/log.txt)");
+      }
+
+    std::vector<study::Row> rows;
+    unsigned int            ran = 0;
+    double                  run_seconds = 0;
+    for (const auto &variant : variants)
+      {
+        const std::string output
+          = runs_directory + "/variant-" + std::to_string(variant.index);
+        screen << "study: variant " << variant.index << " of "
+               << variants.size() << " (" << variant.label << "), "
+               << std::fixed << std::setprecision(1) << elapsed()
+               << " s elapsed";
+        const unsigned int left = variants.size() - variant.index + 1;
+        if (ran > 0)
+          screen << ", about " << run_seconds / ran * left << " s to go";
+        screen << std::defaultfloat << std::setprecision(6) << std::endl;
+        bool       reused;
+        const auto t0  = elapsed();
+        study::Row row = run_variant(variant, output, reused);
+        if (!reused)
+          {
+            ++ran;
+            run_seconds += elapsed() - t0;
+          }
+        if (row.finished)
+          row.error = study::quantity_error(quantity,
+                                            output,
+                                            row.record,
+                                            reference_directory);
+        screen << "  " << (reused ? "kept from before: " : "") << row.status;
+        if (row.finished)
+          screen << ", " << row.get("unknowns") << " unknowns, "
+                 << row.get("wall total") << " s, error " << row.error;
+        screen << std::endl;
+        rows.push_back(row);
+      }
+
+    const std::string what = quantity.describe();
+    study::write_csv(directory + "/results.csv", axes, rows, what);
+    std::ostringstream tables;
+    study::write_convergence_tables(tables,
+                                    directory,
+                                    axes,
+                                    rows,
+                                    rate_axis,
+                                    rates_against,
+                                    scene_dimension);
+    std::ofstream(directory + "/convergence.txt") << tables.str();
+    screen << "\n" << what << "\n" << tables.str();
+    screen << study::draw_charts(directory, title, axes, rows, rate_axis, what)
+           << "\n\n";
+    const std::string summary
+      = study::summary_paragraph(rows, tolerances, what);
+    std::ofstream(directory + "/summary.txt") << summary << '\n';
+    screen << summary << "\n" << std::endl;
+
+    if (picker.tolerance > 0)
+      {
+        const auto choice = study::pick(rows, picker, what);
+        std::ofstream(directory + "/choice.txt") << choice.explanation << '\n';
+        screen << choice.explanation << std::endl;
+        if (choice.row && picker.run_choice)
+          {
+            const std::string output = directory + "/choice";
+            fs::remove_all(output, ec);
+            fs::create_directories(output, ec);
+            screen << "study: running the scene with the choice into "
+                   << output << std::endl;
+            const auto outcome
+              = study::run_child(study::own_executable(),
+                                 arguments(rows[*choice.row].variant.settings,
+                                           output),
+                                 launcher,
+                                 output + "/log.txt");
+            if (outcome.exit_status > 128)
+              throw Interrupted(outcome.exit_status - 128,
+                                "the study stopped during the run of the "
+                                "choice");
+            screen << "  " << study::describe_exit(outcome.exit_status)
+                   << " in " << outcome.wall_seconds << " s" << std::endl;
+          }
+      }
+    screen << "study: " << rows.size() << " variants in " << elapsed()
+           << " s; results in " << directory << "/results.csv" << std::endl;
+  }
+
+  template class Study<1>;
+  template class Study<2>;
+  template class Study<3>;
+
+  TISSUEFEM_REGISTER_PROBLEM(Study,
+                             "study",
+                             "runs an elasticity scene over variants and "
+                             "charts error against cost (see 'Study').")
+} // namespace tissuefem::problems
