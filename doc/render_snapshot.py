@@ -38,16 +38,21 @@ vtk.vtkObject.GlobalWarningDisplayOff()  # errors are reported by fail()
 
 
 def vset(obj, **settings):
-    """vset(x, Color=(r, g, b), Opacity=0.6) calls x.SetColor(r, g, b), ..."""
+    """vset(x, Color=(r, g, b), ModeTo='Fast') calls x.SetColor(r, g, b),
+    x.SetModeToFast() and returns x."""
     for name, value in settings.items():
-        getattr(obj, 'Set' + name)(*(value if isinstance(value, tuple)
-                                     else (value,)))
+        if name.endswith('To'):
+            getattr(obj, 'Set' + name + value)()
+        else:
+            getattr(obj, 'Set' + name)(*(value if isinstance(value, tuple)
+                                         else (value,)))
     return obj
 
 
 class Parser(argparse.ArgumentParser):
     def error(self, message):  # one line on stderr, not a usage block
         fail(message)
+
 
 def parse_args():
     def size(s):  # argparse names the function in its message
@@ -138,7 +143,7 @@ def label_format(lo, hi):
 
 
 def viridis(lo, hi):
-    ctf = vset(vtk.vtkColorTransferFunction(), VectorMode=0)  # 0: magnitude
+    ctf = vset(vtk.vtkColorTransferFunction(), VectorModeTo='Magnitude')
     for x, r, g, b in ((0, .267, .005, .329), (.25, .229, .322, .546),
                        (.5, .128, .567, .551), (.75, .369, .789, .383),
                        (1, .993, .906, .144)):
@@ -159,33 +164,6 @@ def rerun_under_xvfb(size):
               sys.argv[1:])
 
 
-def fit_camera(cam, grids, towards, up, aspect):
-    """Parallel projection from towards, zoomed to the points (an organ
-    fills far less of the picture than its bounding box). Returns the
-    scene's size."""
-    d, up, right = list(towards), list(up), [0.0] * 3
-    vtk.vtkMath.Normalize(d)
-    vtk.vtkMath.Normalize(up)
-    vtk.vtkMath.Cross(up, d, right)
-    vtk.vtkMath.Normalize(right)
-    pts = [g.GetPoint(i) for g in grids for i in range(
-        0, g.GetNumberOfPoints(), 1 + g.GetNumberOfPoints() // 100000)]
-    xs = [vtk.vtkMath.Dot(p, right) for p in pts]
-    ys = [vtk.vtkMath.Dot(p, up) for p in pts]
-    axes = list(zip(*pts))
-    size = math.dist([min(a) for a in axes], [max(a) for a in axes]) or 1.0
-    mx, my = (min(xs) + max(xs)) / 2, (min(ys) + max(ys)) / 2
-    depth = vtk.vtkMath.Dot(pts[0], d)
-    centre = tuple(mx * r + my * u + depth * e
-                   for r, u, e in zip(right, up, d))
-    vset(cam, FocalPoint=centre, ViewUp=tuple(up), ParallelProjection=1,
-         Position=tuple(c + 2 * size * e for c, e in zip(centre, d)),
-         ParallelScale=1.08 * max((max(ys) - min(ys)) / 2, 1e-3 * size,
-                                  (max(xs) - min(xs)) / 2 / aspect),
-         ClippingRange=(0.5 * size, 4 * size))
-    return size
-
-
 def outline(grid, planar, towards, lift):
     # deal.II gives every cell its own vertices: merge them, so that the
     # surface filter sees shared faces and keeps only the outer ones.
@@ -202,12 +180,13 @@ def outline(grid, planar, towards, lift):
                      NonManifoldEdges=0)
     elif not planar:  # the contour seen from the camera, and sharp edges
         edges = vset(vtk.vtkPolyDataSilhouette(), Vector=tuple(towards),
-                     Direction=1, EnableFeatureAngle=1, FeatureAngle=50,
-                     BorderEdges=1)  # Direction 1: along Vector
+                     DirectionTo='SpecifiedVector', EnableFeatureAngle=1,
+                     FeatureAngle=50, BorderEdges=1)
     if edges is not surf:  # else 1D: the bar itself
-        edges.SetInputConnection(surf.GetOutputPort())
-    mapper = vset(vtk.vtkDataSetMapper(), ScalarVisibility=0)
-    mapper.SetInputConnection(edges.GetOutputPort())
+        vset(edges, InputData=surf.GetOutput()).Update()
+    # data, not a pipeline: Python frees the filters when this returns
+    mapper = vset(vtk.vtkDataSetMapper(), ScalarVisibility=0,
+                  InputData=edges.GetOutput())
     actor = vset(vtk.vtkActor(), Mapper=mapper)
     if planar:  # off the body's plane, towards the viewer
         actor.SetPosition(*[lift * c for c in towards])
@@ -221,9 +200,9 @@ def write_png(win, path):
     out = os.path.abspath(path)
     tmp = '%s/.%s.%d.png' % (os.path.dirname(out), os.path.basename(out),
                              os.getpid())
+    grab = vset(vtk.vtkWindowToImageFilter(), Input=win, ReadFrontBuffer=0)
     writer = vset(vtk.vtkPNGWriter(), CompressionLevel=9, FileName=tmp)
-    writer.SetInputConnection(vset(vtk.vtkWindowToImageFilter(), Input=win,
-                                   ReadFrontBuffer=0).GetOutputPort())
+    writer.SetInputConnection(grab.GetOutputPort())
     try:
         writer.Write()
         if writer.GetErrorCode() or not os.path.getsize(tmp):
@@ -265,8 +244,9 @@ def main():
     colours = viridis(lo, hi)
     mapper = vset(vtk.vtkDataSetMapper(), InputData=deformed,
                   LookupTable=colours, UseLookupTableScalarRange=1,
-                  ScalarMode=3 if points.GetArray(args.field) else 4)
-    mapper.SelectColorArray(args.field)  # ScalarMode 3, 4: point, cell field
+                  ScalarModeTo='UsePointFieldData' if points.GetArray(
+                      args.field) else 'UseCellFieldData')
+    mapper.SelectColorArray(args.field)
     mapper.SetResolveCoincidentTopologyToPolygonOffset()  # outline in front
     body = vset(vtk.vtkActor(), Mapper=mapper)
     vset(body.GetProperty(), Ambient=0.35, Diffuse=0.7,  # colours as the bar
@@ -278,8 +258,7 @@ def main():
         towards, up = (0, 0, 1), (0, 1, 0)
     else:  # from up + right + towards the viewer (right-handed)
         towards = {'z': (1, -1, 1), 'y': (1, 1, 1), 'x': (1, 1, -1)}[args.up]
-        up = [float(args.up == a) for a in 'xyz']
-        up = [u - e / 3 for u, e in zip(up, towards)]  # square to towards
+        up = tuple(float(args.up == a) for a in 'xyz')
 
     # Three bands, so that neither text nor colour bar covers the body.
     (w, h), top, bottom = args.size, 0.07, 0.17
@@ -290,31 +269,33 @@ def main():
                   (0, 0, 1, bottom)))
     for r in (text_ren, ren, bar_ren):
         win.AddRenderer(r)
-    size = fit_camera(ren.GetActiveCamera(), (grid, deformed), towards, up,
-                      w / (h * (1 - top - bottom)))
+    size = math.dist(b0[0::2], b0[1::2]) or 1.0
     ren.AddActor(body)
     ren.AddActor(outline(grid, planar, towards, 1e-3 * size))
+    vset(ren.GetActiveCamera(), FocalPoint=(0, 0, 0), Position=towards,
+         ViewUp=up, ParallelProjection=1)
+    ren.ResetCameraScreenSpace()  # zoomed to the bounding box on screen
 
     fs = max(10, round(h / 34))
     run = os.path.basename(os.path.dirname(os.path.abspath(path)))
     notes = [('%s   step %d%s' % (run, step, '' if time is None else
-                                  '   t = %g' % time), fs, 0.02, 0)]
+                                  '   t = %g' % time), fs, 0.02, 'Left')]
     if lo > vmin or hi < vmax:  # the bar does not show every value
         fmt = label_format(vmin, vmax)
         notes.append(('colours clipped; values %s to %s' % (
-            fmt % vmin, fmt % vmax), fs - 2, 0.98, 2))  # 2: right-aligned
-    for words, points, x, justify in notes:
+            fmt % vmin, fmt % vmax), fs - 2, 0.98, 'Right'))
+    for words, font, x, justify in notes:
         t = vset(vtk.vtkTextActor(), Input=words, Position=(x, 0.5))
         t.GetPositionCoordinate().SetCoordinateSystemToNormalizedViewport()
-        vset(t.GetTextProperty(), FontSize=points, Color=(.1, .1, .1),
-             Justification=justify, VerticalJustification=1)  # 1: centred
+        vset(t.GetTextProperty(), FontSize=font, Color=(.1, .1, .1),
+             JustificationTo=justify, VerticalJustificationTo='Centered')
         text_ren.AddActor2D(t)
     bar = vset(vtk.vtkScalarBarActor(), LookupTable=colours,
-               Orientation=0,  # horizontal
+               OrientationTo='Horizontal',
                Title=args.field if arr.GetNumberOfComponents() == 1 else
                '|%s|' % args.field, NumberOfLabels=5, BarRatio=0.25,
                LabelFormat=label_format(lo, hi), Position=(0.15, 0.08),
-               Width=0.7, Height=0.9, TextPosition=0,  # 0: text below
+               Width=0.7, Height=0.9, TextPositionTo='PrecedeScalarBar',
                UnconstrainedFontSize=1)  # the sizes below, not fitted
     for prop, pt in ((bar.GetTitleTextProperty(), fs),
                      (bar.GetLabelTextProperty(), fs - 2)):

@@ -38,7 +38,9 @@ namespace tissuefem::problems
       "An axis is 'Subsection/Name: v1; v2; ...' (values of one parameter) "
       "or 'name: label1 {Subsection/Name = v & Subsection/Name = v}; label2 "
       "{...}' (several settings per value). Later axes override earlier "
-      "ones where they set the same parameter.");
+      "ones where they set the same parameter. Several such products, "
+      "separated by '||' and with the same axis names, are run one after "
+      "the other (e.g. each integrator with time steps that suit it).");
     prm.declare_entry("Rate axis",
                       "",
                       Patterns::Anything(),
@@ -106,7 +108,7 @@ namespace tissuefem::problems
     if (!scene.empty() && scene[0] != '/' && !context.parameter_directory.empty())
       scene = context.parameter_directory + "/" + scene;
     settings      = study::parse_settings(prm.get("Settings"), ';', "Study/Settings");
-    axes          = study::parse_axes(prm.get("Axes"), "Study/Axes");
+    variants = study::parse_variants(prm.get("Axes"), "Study/Axes", axes);
     rates_against = prm.get("Rates against");
     directory     = prm.get("Directory");
     runs_directory = prm.get("Runs directory");
@@ -137,7 +139,6 @@ namespace tissuefem::problems
     require(!directory.empty(), "Study/Directory", "is empty");
     if (runs_directory.empty())
       runs_directory = directory;
-    variants = study::cartesian_product(axes);
   }
 
 
@@ -165,6 +166,20 @@ namespace tissuefem::problems
 
 
   template <int dim>
+  study::Variant
+  Study<dim>::reference_variant() const
+  {
+    study::Variant v;
+    v.index    = 0;
+    v.label    = "reference";
+    v.settings = study::parse_settings(quantity.reference_settings,
+                                       ';',
+                                       "Study/Reference settings");
+    return v;
+  }
+
+
+  template <int dim>
   void
   Study<dim>::setup()
   {
@@ -172,12 +187,7 @@ namespace tissuefem::problems
     // typo in the last variant must not cost the whole study.
     std::vector<study::Variant> all = variants;
     if (quantity.reference == "reference run")
-      all.push_back({0,
-                     "reference",
-                     {},
-                     study::parse_settings(quantity.reference_settings,
-                                           ';',
-                                           "Study/Reference settings")});
+      all.push_back(reference_variant());
     for (const auto &v : all)
       {
         ParameterHandler prm;
@@ -304,13 +314,7 @@ namespace tissuefem::problems
         screen << "study: reference run (" << quantity.reference_settings
                << ")" << std::endl;
         bool       reused;
-        const auto reference = run_variant(
-          {0,
-           "reference",
-           {},
-           study::parse_settings(quantity.reference_settings,
-                                 ';',
-                                 "Study/Reference settings")},
+        const auto reference = run_variant(reference_variant(),
           reference_directory,
           reused);
         if (!reference.finished)
@@ -376,16 +380,22 @@ namespace tissuefem::problems
 
     if (picker.tolerance > 0)
       {
-        const auto choice = study::pick(rows, picker, what);
-        std::ofstream(directory + "/choice.txt") << choice.explanation << '\n';
-        screen << choice.explanation << std::endl;
-        if (choice.row && picker.run_choice)
+        std::ofstream choices(directory + "/choice.txt");
+        for (unsigned int b = 0; b < picker.budgets.size(); ++b)
           {
-            const std::string output = directory + "/choice";
+            const auto choice
+              = study::pick(rows, picker.tolerance, picker.budgets[b], what);
+            choices << choice.explanation << "\n\n" << std::flush;
+            screen << choice.explanation << std::endl;
+            if (!choice.row || !picker.run_choice)
+              continue;
+            const std::string output
+              = directory + "/choice-" + std::to_string(b + 1);
             fs::remove_all(output, ec);
             fs::create_directories(output, ec);
-            screen << "study: running the scene with the choice into "
-                   << output << std::endl;
+            screen << "study: running the scene with choice #"
+                   << rows[*choice.row].variant.index << " into " << output
+                   << std::endl;
             const auto outcome
               = study::run_child(study::own_executable(),
                                  arguments(rows[*choice.row].variant.settings,
@@ -394,10 +404,11 @@ namespace tissuefem::problems
                                  output + "/log.txt");
             if (outcome.exit_status > 128)
               throw Interrupted(outcome.exit_status - 128,
-                                "the study stopped during the run of the "
+                                "the study stopped during the run of a "
                                 "choice");
             screen << "  " << study::describe_exit(outcome.exit_status)
-                   << " in " << outcome.wall_seconds << " s" << std::endl;
+                   << " in " << outcome.wall_seconds << " s\n"
+                   << std::endl;
           }
       }
     screen << "study: " << rows.size() << " variants in " << elapsed()

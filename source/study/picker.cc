@@ -18,16 +18,17 @@ namespace tissuefem::study
                       "(its units); 0 leaves the choice out.");
     prm.declare_entry("Budget per step",
                       "0",
-                      Patterns::Double(0),
+                      Patterns::List(Patterns::Double(0)),
                       "Wall-clock time one step may take (s), compared with "
                       "each variant's 95th percentile of step wall times: "
-                      "1/30 for a visual loop, 1/500 for haptics. 0: no "
-                      "budget.");
+                      "1/30 for a visual loop, 1/500 for haptics. Several "
+                      "budgets give one choice each. 0: no budget.");
     prm.declare_entry("Run choice",
                       "true",
                       Patterns::Bool(),
                       "Run the scene with the chosen variant's settings "
-                      "(into '<Study/Directory>/choice').");
+                      "(into '<Study/Directory>/choice-K' for the K-th "
+                      "budget).");
     prm.leave_subsection();
   }
 
@@ -37,7 +38,11 @@ namespace tissuefem::study
   {
     prm.enter_subsection("Model choice");
     tolerance  = prm.get_double("Tolerance");
-    budget     = prm.get_double("Budget per step");
+    budgets.clear();
+    for (const auto &b : Utilities::split_string_list(prm.get("Budget per step")))
+      budgets.push_back(Utilities::string_to_double(b));
+    if (budgets.empty())
+      budgets.push_back(0);
     run_choice = prm.get_bool("Run choice");
     prm.leave_subsection();
   }
@@ -45,7 +50,8 @@ namespace tissuefem::study
 
   Choice
   pick(const std::vector<Row> &rows,
-       const PickerParameters &p,
+       const double            tolerance,
+       const double            budget,
        const std::string      &quantity)
   {
     std::vector<unsigned int> order(rows.size());
@@ -70,9 +76,9 @@ namespace tissuefem::study
         const Row &r = rows[i];
         if (!r.finished)
           continue;
-        const bool accurate = r.error <= p.tolerance;
+        const bool accurate = r.error <= tolerance;
         const bool in_time
-          = p.budget == 0 || r.get("step p95") <= p.budget;
+          = budget == 0 || r.get("step p95") <= budget;
         if (accurate && in_time)
           {
             choice.row = i;
@@ -83,8 +89,11 @@ namespace tissuefem::study
                       in_time  ? "; not accurate enough" :
                                  "; too slow and not accurate enough"));
       }
-    why << "Model choice for " << quantity << " at most " << p.tolerance
-        << " and at most " << p.budget << " s of wall time per step: ";
+    why << "Model choice for " << quantity << " at most " << tolerance
+        << " and "
+        << (budget > 0 ? "at most " + std::to_string(budget) + " s" :
+                         std::string("any"))
+        << " of wall time per step: ";
     if (choice.row)
       why << "chose " << facts(rows[*choice.row])
           << ", the cheapest per simulated time of the variants that meet "

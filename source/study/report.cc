@@ -106,9 +106,9 @@ namespace tissuefem::study
     series_name(const Row &row, const unsigned int rate_axis)
     {
       std::string name;
-      for (unsigned int a = 0; a < row.variant.axis_labels.size(); ++a)
+      for (unsigned int a = 0; a < row.variant.axis_pieces.size(); ++a)
         if (a != rate_axis)
-          name += (name.empty() ? "" : ", ") + row.variant.axis_labels[a];
+          name += (name.empty() ? "" : ", ") + row.variant.axis_pieces[a];
       return name.empty() ? "all variants" : name;
     }
 

@@ -116,8 +116,45 @@ namespace tissuefem::study
               = slash == std::string::npos ?
                   variants[i].axis_labels[a] :
                   name.substr(slash + 1) + "=" + variants[i].axis_labels[a];
+            variants[i].axis_pieces.push_back(piece);
             variants[i].label += (a ? ", " : "") + piece;
           }
+      }
+    return variants;
+  }
+
+
+  std::vector<Variant>
+  parse_variants(const std::string &text,
+                 const std::string &parameter,
+                 std::vector<Axis> &axes)
+  {
+    std::vector<Variant> variants;
+    axes.clear();
+    std::string rest = text;
+    while (true)
+      {
+        const auto        split = rest.find("||");
+        const std::string block = rest.substr(0, split);
+        const auto        block_axes = parse_axes(block, parameter);
+        if (axes.empty())
+          axes = block_axes;
+        require(block_axes.size() == axes.size(),
+                parameter,
+                "every block (separated by '||') needs the same axes");
+        for (unsigned int a = 0; a < axes.size(); ++a)
+          require(block_axes[a].name == axes[a].name,
+                  parameter,
+                  "axis '" + block_axes[a].name + "' of a later block is not '"
+                    + axes[a].name + "' (blocks need the same axes, in order)");
+        for (Variant v : cartesian_product(block_axes))
+          {
+            v.index = variants.size() + 1;
+            variants.push_back(v);
+          }
+        if (split == std::string::npos)
+          break;
+        rest = rest.substr(split + 2);
       }
     return variants;
   }

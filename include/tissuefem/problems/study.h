@@ -49,6 +49,10 @@ namespace tissuefem::problems
     /// 'Dimension' of the scene (of its first variant), for orders in h.
     unsigned int scene_dimension = dim;
 
+    /// The run the errors are measured against ('Reference settings').
+    study::Variant
+    reference_variant() const;
+
     /// The --set arguments of a run with @p extra settings into @p output.
     std::vector<std::string>
     arguments(const std::vector<study::Setting> &extra,

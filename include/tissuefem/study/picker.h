@@ -27,8 +27,8 @@ namespace tissuefem::study
 
     /// Largest acceptable error (0: do not pick).
     double tolerance;
-    /// Wall-clock budget per step (s); 0: no budget.
-    double budget;
+    /// Wall-clock budgets per step (s), one choice each; 0: no budget.
+    std::vector<double> budgets;
     bool   run_choice;
   };
 
@@ -43,12 +43,13 @@ namespace tissuefem::study
   /**
    * Picks among @p rows: a variant qualifies if it finished, its error is
    * at most the tolerance and its 95th-percentile step wall time is at most
-   * the budget; of those, the least wall time of the steps per simulated
+   * @p budget (0: any); of those, the least wall time of the steps per simulated
    * time unit wins. The explanation names the winner and every cheaper
    * variant with the demand it missed.
    */
   Choice
-  pick(const std::vector<Row>  &rows,
-       const PickerParameters  &parameters,
-       const std::string       &quantity);
+  pick(const std::vector<Row> &rows,
+       const double            tolerance,
+       const double            budget,
+       const std::string      &quantity);
 } // namespace tissuefem::study

@@ -46,6 +46,8 @@ namespace tissuefem::study
     unsigned int             index;
     std::string              label;
     std::vector<std::string> axis_labels;
+    /// Per axis: 'Name=value' for one-parameter axes, else the label.
+    std::vector<std::string> axis_pieces;
     std::vector<Setting>     settings;
   };
 
@@ -68,4 +70,16 @@ namespace tissuefem::study
   /// slowest. Settings of later axes come after (and override) earlier ones.
   std::vector<Variant>
   cartesian_product(const std::vector<Axis> &axes);
+
+  /**
+   * The variants of the 'Study/Axes' text: blocks separated by '||', each
+   * the Cartesian product of its axes (parse_axes()), one after the other;
+   * every block has the same axis names (e.g. an integrator axis with a
+   * time step axis whose values suit that integrator). @p axes gets the
+   * first block's axes. Variants are numbered from 1 across blocks.
+   */
+  std::vector<Variant>
+  parse_variants(const std::string &text,
+                 const std::string &parameter,
+                 std::vector<Axis> &axes);
 } // namespace tissuefem::study
