@@ -35,7 +35,7 @@ failed=
 scene() {
   name=$1 options=$2
   shift 2
-  rm -rf "$runs/$name"
+  rm -rf "${runs:?}/${name:?}"
   start=$(date +%s)
   nice -n 19 "$exe" "$top/parameters/$name.prm" \
     --set "Output/Directory=$runs/$name" "$@" > "$runs/$name.log" 2>&1
@@ -47,6 +47,7 @@ scene() {
   fi
   ran=$(($(date +%s) - start))
   # $options unquoted on purpose: one word per option
+  # shellcheck disable=SC2086
   if ! nice -n 19 python3 "$top/doc/render_snapshot.py" "$runs/$name" \
          "$figs/$name.png" --size 640x480 $options; then
     failed="$failed $name"

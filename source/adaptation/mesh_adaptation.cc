@@ -5,6 +5,7 @@
 #include <deal.II/numerics/solution_transfer.h>
 
 #include <tissuefem/adaptation/mesh_adaptation.h>
+#include <tissuefem/adaptation/stress_jump.h>
 #include <tissuefem/base/input_error.h>
 
 namespace tissuefem::adaptation
@@ -16,12 +17,17 @@ namespace tissuefem::adaptation
     prm.declare_entry(
       "Indicator",
       "none",
-      Patterns::Selection("none|Kelly"),
+      Patterns::Selection("none|Kelly|stress jump"),
       "'none': the mesh stays as built. 'Kelly': adapt the mesh during the "
       "run from Kelly's indicator, the jump of the displacement gradient "
       "across cell faces (length units times sqrt(length^(dim-1))); "
       "quadrilaterals/hexahedra only (deal.II 9.4 cannot refine simplices "
-      "locally).");
+      "locally). 'stress jump': the face terms of the residual error "
+      "estimator, the jump of the traction P N across faces and its misfit "
+      "on traction boundaries, scaled by 1/(2 mu) (adaptation/stress_jump.h): "
+      "an estimate of the H1 seminorm error that weighs the force imbalance, "
+      "so stiff and loaded regions count more than Kelly's gradient jumps "
+      "say.");
     prm.declare_entry("Strategy",
                       "fixed number",
                       Patterns::Selection("fixed number|fixed fraction"),
@@ -99,6 +105,7 @@ namespace tissuefem::adaptation
   template <int dim>
   bool
   MeshAdaptation<dim>::adapt(const VectorType                &u,
+                             const double                     time,
                              const std::vector<VectorType *> &vectors)
   {
     const auto    &discretization = solid.get_discretization();
@@ -111,7 +118,10 @@ namespace tissuefem::adaptation
     discretization.initialize_vector(ghosted, true);
     ghosted = u;
     Vector<float> indicator(triangulation.n_active_cells());
-    KellyErrorEstimator<dim>::estimate(*discretization.mapping,
+    if (parameters.indicator == "stress jump")
+      stress_jump_indicator(solid, ghosted, time, indicator);
+    else
+      KellyErrorEstimator<dim>::estimate(*discretization.mapping,
                                        dof_handler,
                                        discretization.face_quadrature,
                                        {},

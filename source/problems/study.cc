@@ -258,6 +258,12 @@ namespace tissuefem::problems
                              arguments(variant.settings, output),
                              launcher,
                              output + "/log.txt");
+        if (outcome.exit_status == 127)
+          throw InputError("cannot start '" + study::own_executable()
+                           + "' for variant " + std::to_string(variant.index)
+                           + (launcher.empty() ? "" :
+                                                 " with 'Study/Launcher = "
+                                                   + launcher + "'"));
         if (outcome.exit_status > 128)
           throw Interrupted(outcome.exit_status - 128,
                             "the study stopped during variant "

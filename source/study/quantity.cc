@@ -38,6 +38,11 @@ namespace tissuefem::study
                       "0",
                       Patterns::Integer(0),
                       "Index of the probe point for probe quantities.");
+    prm.declare_entry("Component",
+                      "all",
+                      Patterns::Selection("all|x|y|z"),
+                      "Probe quantities: the displacement component compared "
+                      "('all': the Euclidean distance of the vectors).");
     prm.declare_entry("Reference",
                       "reference run",
                       Patterns::Selection("manufactured|value|reference run"),
@@ -50,8 +55,8 @@ namespace tissuefem::study
                       "",
                       Patterns::Anything(),
                       "The exact value: dim displacement components for "
-                      "'probe final' (length units), one number for 'stored "
-                      "energy' (energy units).");
+                      "'probe final' (length units; one with 'Component'), "
+                      "one number for 'stored energy' (energy units).");
     prm.declare_entry("Reference settings",
                       "",
                       Patterns::Anything(),
@@ -70,6 +75,8 @@ namespace tissuefem::study
   {
     quantity           = prm.get("Quantity");
     probe              = prm.get_integer("Probe");
+    const std::string c = prm.get("Component");
+    component = c == "all" ? -1 : c == "x" ? 0 : c == "y" ? 1 : 2;
     reference          = prm.get("Reference");
     reference_settings = prm.get("Reference settings");
     relative           = prm.get_bool("Relative");
@@ -129,7 +136,9 @@ namespace tissuefem::study
                                                        "the reference run";
     return quantity
            + (quantity.rfind("probe", 0) == 0 ?
-                " " + std::to_string(probe) :
+                " " + std::to_string(probe)
+                  + (component < 0 ? "" :
+                                     std::string(" u_") + "xyz"[component]) :
                 "")
            + (quantity.find("error") == std::string::npos ? " error" : "")
            + " against " + against + " ("
@@ -138,7 +147,9 @@ namespace tissuefem::study
 
 
   ProbeHistory
-  read_probe_history(const std::string &directory, const unsigned int probe)
+  read_probe_history(const std::string &directory,
+                     const unsigned int probe,
+                     const int          component)
   {
     const std::string file = directory + "/probes.csv";
     std::ifstream     in(file);
@@ -160,7 +171,11 @@ namespace tissuefem::study
           continue;
         std::vector<double> u;
         for (unsigned int d = 0; d < dim; ++d)
-          u.push_back(std::stod(fields[2 + dim + d]));
+          if (component < 0 || static_cast<int>(d) == component)
+            u.push_back(std::stod(fields[2 + dim + d]));
+        if (u.empty())
+          throw InputError("Parameter 'Study/Component': '" + file
+                           + "' has no such displacement component");
         history[std::stod(fields[0])] = u;
       }
     if (history.empty())
@@ -237,7 +252,7 @@ namespace tissuefem::study
       }
     else
       {
-        const ProbeHistory run = read_probe_history(directory, p.probe);
+        const ProbeHistory run = read_probe_history(directory, p.probe, p.component);
         if (p.reference == "value")
           {
             error = distance(run.rbegin()->second, p.reference_value);
@@ -246,7 +261,7 @@ namespace tissuefem::study
         else
           {
             const ProbeHistory reference
-              = read_probe_history(reference_directory, p.probe);
+              = read_probe_history(reference_directory, p.probe, p.component);
             if (p.quantity == "probe final")
               {
                 error = distance(run.rbegin()->second,

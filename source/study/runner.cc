@@ -23,7 +23,15 @@ namespace tissuefem::study
     if (ec)
       throw InputError("cannot find the tissuefem executable through "
                        "/proc/self/exe to run a study's variants");
-    return path.string();
+    // A rebuilt executable replaces the running one's file: its new file
+    // has the same path.
+    std::string name           = path.string();
+    const std::string replaced = " (deleted)";
+    if (name.size() > replaced.size()
+        && name.compare(name.size() - replaced.size(), replaced.size(), replaced)
+             == 0)
+      name.resize(name.size() - replaced.size());
+    return name;
   }
 
 

@@ -70,7 +70,9 @@ namespace tissuefem::adaptation
      * mesh changed.
      */
     bool
-    adapt(const VectorType &u, const std::vector<VectorType *> &vectors);
+    adapt(const VectorType                &u,
+          const double                     time,
+          const std::vector<VectorType *> &vectors);
 
   private:
     MeshRefinementParameters parameters;

@@ -176,6 +176,12 @@ namespace tissuefem::solid
       return materials;
     }
 
+    const boundary::BoundaryConditions<dim> &
+    get_boundary_conditions() const
+    {
+      return boundary_conditions;
+    }
+
     const FibreField<dim> &
     fibres() const
     {

@@ -28,6 +28,8 @@ namespace tissuefem::study
     /// 'probe history' or 'stored energy'.
     std::string  quantity;
     unsigned int probe;
+    /// Displacement component of probe quantities (-1: all, Euclidean).
+    int component;
     /// 'manufactured', 'value' or 'reference run'.
     std::string         reference;
     std::vector<double> reference_value;
@@ -42,10 +44,13 @@ namespace tissuefem::study
   /// Probe displacements of one run: time -> components, for one probe.
   using ProbeHistory = std::map<double, std::vector<double>>;
 
-  /// Reads probe @p probe from '<dir>/probes.csv'; throws InputError if
-  /// the file is missing or malformed.
+  /// Reads probe @p probe from '<dir>/probes.csv' (only displacement
+  /// component @p component if >= 0); throws InputError if the file is
+  /// missing or malformed.
   ProbeHistory
-  read_probe_history(const std::string &directory, const unsigned int probe);
+  read_probe_history(const std::string &directory,
+                     const unsigned int probe,
+                     const int          component = -1);
 
   /**
    * The error of the run in @p directory (with its run record @p record)

@@ -1,0 +1,196 @@
+#include <deal.II/fe/fe_values.h>
+
+#include <tissuefem/adaptation/stress_jump.h>
+#include <tissuefem/base/parallel.h>
+
+#include <algorithm>
+#include <map>
+
+namespace tissuefem::adaptation
+{
+  namespace
+  {
+    /// Traction P N of the displacement gradients @p grad_u at normal @p N.
+    template <int dim>
+    Tensor<1, dim>
+    traction(const materials::MaterialSet<dim> &materials,
+             const types::material_id           id,
+             const Point<dim>                  &X,
+             const Tensor<2, dim>              &grad_u,
+             const Tensor<1, dim>              &N)
+    {
+      const Tensor<1, dim> fibre = materials.any_uses_fibres() ?
+                                     materials.fibre_direction(X) :
+                                     Tensor<1, dim>();
+      return materials.material(id).stress(unit_symmetric_tensor<dim>()
+                                             + grad_u,
+                                           fibre)
+             * N;
+    }
+  } // namespace
+
+
+  template <int dim>
+  void
+  stress_jump_indicator(const solid::Solid<dim> &solid,
+                        const VectorType        &u,
+                        const double             time,
+                        Vector<float>           &indicator)
+  {
+    const auto &d         = solid.get_discretization();
+    const auto &materials = solid.get_materials();
+    const auto &bc        = solid.get_boundary_conditions();
+    const auto &quadrature = d.face_quadrature;
+    const unsigned int n_q = quadrature.size();
+    const UpdateFlags  flags = update_gradients | update_normal_vectors
+                              | update_quadrature_points | update_JxW_values;
+    FEFaceValues<dim> here(*d.mapping, *d.fe, quadrature, flags);
+    FEFaceValues<dim> there(*d.mapping, *d.fe, quadrature, flags);
+    const FEValuesExtractors::Vector displacement(0);
+    std::vector<Tensor<2, dim>>      grad_here(n_q), grad_there(n_q);
+
+    // 2 mu = 2 A_0101 at F = I, per material id: scales the traction
+    // residual to the units of the displacement gradient.
+    std::map<types::material_id, double> two_mu;
+    const auto scale = [&](const types::material_id id) {
+      auto it = two_mu.find(id);
+      if (it != two_mu.end())
+        return it->second;
+      Tensor<2, dim> P;
+      Tensor<4, dim> A;
+      materials.material(id).stress_and_tangent(unit_symmetric_tensor<dim>(),
+                                                Tensor<1, dim>(),
+                                                P,
+                                                A,
+                                                materials.tangent_method());
+      return two_mu[id] = 2 * std::max(A[0][1][0][1], 1e-300);
+    };
+    // Prescribed components and tractions per boundary id.
+    std::map<types::boundary_id, ComponentMask> held;
+    for (const auto &c : bc.dirichlet)
+      held[c.id] = c.mask;
+    std::map<types::boundary_id, Function<dim> *> tractions;
+    for (const auto &c : bc.neumann)
+      {
+        c.traction->set_time(time);
+        tractions[c.id] = c.traction.get();
+      }
+
+    indicator.reinit(d.dof_handler.get_triangulation().n_active_cells());
+    Vector<double> t_value(dim);
+    for (const auto &cell : d.dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          double sum = 0;
+          for (const unsigned int f : cell->face_indices())
+            {
+              here.reinit(cell, f);
+              here[displacement].get_function_gradients(u, grad_here);
+              // h_K stands for h_F (shape-regular cells; faces are points in 1D).
+              const double h_F = cell->diameter();
+              double       integral = 0;
+              if (cell->face(f)->at_boundary())
+                {
+                  const auto id   = cell->face(f)->boundary_id();
+                  const auto mask = held.count(id) ? held[id] :
+                                                     ComponentMask(dim, false);
+                  for (unsigned int q = 0; q < n_q; ++q)
+                    {
+                      Tensor<1, dim> r = traction(materials,
+                                                  cell->material_id(),
+                                                  here.quadrature_point(q),
+                                                  grad_here[q],
+                                                  here.normal_vector(q));
+                      if (tractions.count(id))
+                        {
+                          tractions[id]->vector_value(here.quadrature_point(q),
+                                                      t_value);
+                          for (unsigned int c = 0; c < dim; ++c)
+                            r[c] -= t_value[c];
+                        }
+                      for (unsigned int c = 0; c < dim; ++c)
+                        if (mask.size() == dim && mask[c])
+                          r[c] = 0;
+                      integral += r.norm_square() * here.JxW(q);
+                    }
+                  sum += h_F * integral;
+                  continue;
+                }
+              // A finer neighbour: its cells see this face from their side.
+              if (cell->neighbor(f)->has_children())
+                continue;
+              const auto neighbor = cell->neighbor(f);
+              std::vector<Point<dim>> unit(n_q);
+              for (unsigned int q = 0; q < n_q; ++q)
+                unit[q] = d.mapping->transform_real_to_unit_cell(
+                  neighbor, here.quadrature_point(q));
+              // Neighbour gradients at the same points.
+              FEValues<dim> at_points(*d.mapping,
+                                      *d.fe,
+                                      Quadrature<dim>(unit),
+                                      update_gradients);
+              at_points.reinit(neighbor);
+              at_points[displacement].get_function_gradients(u, grad_there);
+              for (unsigned int q = 0; q < n_q; ++q)
+                {
+                  const Tensor<1, dim> &N = here.normal_vector(q);
+                  const Tensor<1, dim>  jump
+                    = traction(materials,
+                               cell->material_id(),
+                               here.quadrature_point(q),
+                               grad_here[q],
+                               N)
+                      - traction(materials,
+                                 neighbor->material_id(),
+                                 here.quadrature_point(q),
+                                 grad_there[q],
+                                 N);
+                  integral += jump.norm_square() * here.JxW(q);
+                }
+              // Same level: each side carries half; coarser neighbour: the
+              // fine side carries it all.
+              sum += (neighbor->level() == cell->level() ? 0.5 : 1.) * h_F
+                     * integral;
+            }
+          const double s = scale(cell->material_id());
+          indicator[cell->active_cell_index()] = std::sqrt(sum) / s;
+        }
+  }
+
+
+  template <int dim>
+  double
+  stress_jump_estimate(const solid::Solid<dim> &solid,
+                       const VectorType        &u_ghosted,
+                       const double             time)
+  {
+    Vector<float> indicator;
+    stress_jump_indicator(solid, u_ghosted, time, indicator);
+    double sum = 0;
+    for (const float eta : indicator)
+      sum += double(eta) * eta;
+    return std::sqrt(Utilities::MPI::sum(sum, parallel_tools::communicator()));
+  }
+
+  template void
+  stress_jump_indicator(const solid::Solid<1> &,
+                        const VectorType &,
+                        const double,
+                        Vector<float> &);
+  template void
+  stress_jump_indicator(const solid::Solid<2> &,
+                        const VectorType &,
+                        const double,
+                        Vector<float> &);
+  template void
+  stress_jump_indicator(const solid::Solid<3> &,
+                        const VectorType &,
+                        const double,
+                        Vector<float> &);
+  template double
+  stress_jump_estimate(const solid::Solid<1> &, const VectorType &, const double);
+  template double
+  stress_jump_estimate(const solid::Solid<2> &, const VectorType &, const double);
+  template double
+  stress_jump_estimate(const solid::Solid<3> &, const VectorType &, const double);
+} // namespace tissuefem::adaptation
