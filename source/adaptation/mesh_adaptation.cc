@@ -122,15 +122,16 @@ namespace tissuefem::adaptation
       stress_jump_indicator(solid, ghosted, time, indicator);
     else
       KellyErrorEstimator<dim>::estimate(*discretization.mapping,
-                                       dof_handler,
-                                       discretization.face_quadrature,
-                                       {},
-                                       ghosted,
-                                       indicator,
-                                       ComponentMask(),
-                                       nullptr,
-                                       numbers::invalid_unsigned_int,
-                                       Utilities::MPI::this_mpi_process(comm));
+                                         dof_handler,
+                                         discretization.face_quadrature,
+                                         {},
+                                         ghosted,
+                                         indicator,
+                                         ComponentMask(),
+                                         nullptr,
+                                         numbers::invalid_unsigned_int,
+                                         Utilities::MPI::this_mpi_process(
+                                           comm));
     Utilities::MPI::sum(indicator, comm, indicator);
 
     const unsigned int max_cells = parameters.max_cells > 0

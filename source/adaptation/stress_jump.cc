@@ -19,9 +19,9 @@ namespace tissuefem::adaptation
              const Tensor<2, dim>              &grad_u,
              const Tensor<1, dim>              &N)
     {
-      const Tensor<1, dim> fibre = materials.any_uses_fibres() ?
-                                     materials.fibre_direction(X) :
-                                     Tensor<1, dim>();
+      const Tensor<1, dim> fibre = materials.any_uses_fibres()
+                                     ? materials.fibre_direction(X)
+                                     : Tensor<1, dim>();
       return materials.material(id).stress(unit_symmetric_tensor<dim>()
                                              + grad_u,
                                            fibre)
@@ -37,12 +37,12 @@ namespace tissuefem::adaptation
                         const double             time,
                         Vector<float>           &indicator)
   {
-    const auto &d         = solid.get_discretization();
-    const auto &materials = solid.get_materials();
-    const auto &bc        = solid.get_boundary_conditions();
-    const auto &quadrature = d.face_quadrature;
-    const unsigned int n_q = quadrature.size();
-    const UpdateFlags  flags = update_gradients | update_normal_vectors
+    const auto        &d          = solid.get_discretization();
+    const auto        &materials  = solid.get_materials();
+    const auto        &bc         = solid.get_boundary_conditions();
+    const auto        &quadrature = d.face_quadrature;
+    const unsigned int n_q        = quadrature.size();
+    const UpdateFlags  flags      = update_gradients | update_normal_vectors
                               | update_quadrature_points | update_JxW_values;
     FEFaceValues<dim> here(*d.mapping, *d.fe, quadrature, flags);
     FEFaceValues<dim> there(*d.mapping, *d.fe, quadrature, flags);
@@ -63,7 +63,9 @@ namespace tissuefem::adaptation
                                                 P,
                                                 A,
                                                 materials.tangent_method());
-      return two_mu[id] = 2 * std::max(A[0][1][0][1], 1e-300);
+      // (In 1D, A_0000 = lambda + 2 mu stands for 2 mu.)
+      const unsigned int j = dim > 1 ? 1 : 0;
+      return two_mu[id] = (dim > 1 ? 2 : 1) * std::max(A[0][j][0][j], 1e-300);
     };
     // Prescribed components and tractions per boundary id.
     std::map<types::boundary_id, ComponentMask> held;
@@ -86,14 +88,15 @@ namespace tissuefem::adaptation
             {
               here.reinit(cell, f);
               here[displacement].get_function_gradients(u, grad_here);
-              // h_K stands for h_F (shape-regular cells; faces are points in 1D).
-              const double h_F = cell->diameter();
+              // h_K stands for h_F (shape-regular cells; faces are points in
+              // 1D).
+              const double h_F      = cell->diameter();
               double       integral = 0;
               if (cell->face(f)->at_boundary())
                 {
-                  const auto id   = cell->face(f)->boundary_id();
-                  const auto mask = held.count(id) ? held[id] :
-                                                     ComponentMask(dim, false);
+                  const auto id = cell->face(f)->boundary_id();
+                  const auto mask
+                    = held.count(id) ? held[id] : ComponentMask(dim, false);
                   for (unsigned int q = 0; q < n_q; ++q)
                     {
                       Tensor<1, dim> r = traction(materials,
@@ -119,7 +122,7 @@ namespace tissuefem::adaptation
               // A finer neighbour: its cells see this face from their side.
               if (cell->neighbor(f)->has_children())
                 continue;
-              const auto neighbor = cell->neighbor(f);
+              const auto              neighbor = cell->neighbor(f);
               std::vector<Point<dim>> unit(n_q);
               for (unsigned int q = 0; q < n_q; ++q)
                 unit[q] = d.mapping->transform_real_to_unit_cell(
@@ -152,7 +155,7 @@ namespace tissuefem::adaptation
               sum += (neighbor->level() == cell->level() ? 0.5 : 1.) * h_F
                      * integral;
             }
-          const double s = scale(cell->material_id());
+          const double s                       = scale(cell->material_id());
           indicator[cell->active_cell_index()] = std::sqrt(sum) / s;
         }
   }
@@ -188,9 +191,15 @@ namespace tissuefem::adaptation
                         const double,
                         Vector<float> &);
   template double
-  stress_jump_estimate(const solid::Solid<1> &, const VectorType &, const double);
+  stress_jump_estimate(const solid::Solid<1> &,
+                       const VectorType &,
+                       const double);
   template double
-  stress_jump_estimate(const solid::Solid<2> &, const VectorType &, const double);
+  stress_jump_estimate(const solid::Solid<2> &,
+                       const VectorType &,
+                       const double);
   template double
-  stress_jump_estimate(const solid::Solid<3> &, const VectorType &, const double);
+  stress_jump_estimate(const solid::Solid<3> &,
+                       const VectorType &,
+                       const double);
 } // namespace tissuefem::adaptation

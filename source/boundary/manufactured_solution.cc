@@ -62,7 +62,8 @@ namespace tissuefem::boundary
       explicit FieldFunction(Field field)
           : Function<dim>(dim)
           , field(std::move(field))
-      {}
+      {
+      }
 
       double
       value(const Point<dim> &X, const unsigned int component) const override
@@ -105,7 +106,8 @@ namespace tissuefem::boundary
     const Triangulation<dim>          &triangulation,
     const bool                         with_inertia)
       : parameters(parameters)
-      , material(materials.material(triangulation.begin_active()->material_id()))
+      , material(
+          materials.material(triangulation.begin_active()->material_id()))
       , density(materials.density(triangulation.begin_active()->material_id()))
       , tangent_method(materials.tangent_method())
       , inertia(with_inertia)
@@ -140,13 +142,13 @@ namespace tissuefem::boundary
   {
     // Derivatives of cos(theta) in X_d of order 0, 1, 2:
     // cos, -k sin, -k^2 cos.
-    const double k = parameters.wave_number;
+    const double k       = parameters.wave_number;
     double       product = 1;
     for (unsigned int d = 0; d < dim; ++d)
       {
         const double       theta = k * X[d] + psi(i, d);
         const unsigned int order = (dx1 == d) + (dx2 == d);
-        product *= order == 0 ? std::cos(theta)
+        product *= order == 0   ? std::cos(theta)
                    : order == 1 ? -k * std::sin(theta)
                                 : -k * k * std::cos(theta);
       }
@@ -168,8 +170,7 @@ namespace tissuefem::boundary
 
   template <int dim>
   Tensor<1, dim>
-  ManufacturedSolution<dim>::velocity(const Point<dim> &X,
-                                      const double      t) const
+  ManufacturedSolution<dim>::velocity(const Point<dim> &X, const double t) const
   {
     const double   omega = parameters.angular_frequency;
     Tensor<1, dim> v;
@@ -182,8 +183,7 @@ namespace tissuefem::boundary
 
   template <int dim>
   Tensor<2, dim>
-  ManufacturedSolution<dim>::gradient(const Point<dim> &X,
-                                      const double      t) const
+  ManufacturedSolution<dim>::gradient(const Point<dim> &X, const double t) const
   {
     Tensor<2, dim> G;
     for (unsigned int i = 0; i < dim; ++i)
@@ -201,12 +201,7 @@ namespace tissuefem::boundary
     const Tensor<2, dim> F = unit_symmetric_tensor<dim>() + gradient(X, t);
     Tensor<2, dim>       P;
     Tensor<4, dim>       A;
-    material.stress_and_tangent(
-      F,
-      Tensor<1, dim>(),
-      P,
-      A,
-      tangent_method);
+    material.stress_and_tangent(F, Tensor<1, dim>(), P, A, tangent_method);
     // Div P_i = A_ijkl dF_kl/dX_j, dF_kl/dX_j = d^2 u_k / dX_l dX_j.
     Tensor<3, dim> grad_F;
     for (unsigned int k = 0; k < dim; ++k)
@@ -215,8 +210,8 @@ namespace tissuefem::boundary
           grad_F[k][l][j]
             = parameters.amplitude * phase(k, t) * space(k, X, l, j);
     Tensor<1, dim> b;
-    const double   omega2 = parameters.angular_frequency
-                          * parameters.angular_frequency;
+    const double   omega2
+      = parameters.angular_frequency * parameters.angular_frequency;
     for (unsigned int i = 0; i < dim; ++i)
       {
         double div_P = 0;
@@ -225,11 +220,10 @@ namespace tissuefem::boundary
             for (unsigned int l = 0; l < dim; ++l)
               div_P += A[i][j][k][l] * grad_F[k][l][j];
         // u_tt = -omega^2 u.
-        const double u_tt
-          = inertia ? -omega2 * parameters.amplitude * phase(i, t)
-                        * space(i, X, dim, dim)
-                    : 0.;
-        b[i] = density * u_tt - div_P;
+        const double u_tt = inertia ? -omega2 * parameters.amplitude
+                                        * phase(i, t) * space(i, X, dim, dim)
+                                    : 0.;
+        b[i]              = density * u_tt - div_P;
       }
     return b;
   }
@@ -251,9 +245,9 @@ namespace tissuefem::boundary
                              ComponentMask(dim, true),
                              field(&ManufacturedSolution::displacement)});
     c.neumann.clear();
-    c.body_force         = field(&ManufacturedSolution::body_force);
-    c.body_force_is_zero = false;
-    c.gravity            = Tensor<1, dim>();
+    c.body_force           = field(&ManufacturedSolution::body_force);
+    c.body_force_is_zero   = false;
+    c.gravity              = Tensor<1, dim>();
     c.initial_displacement = field(&ManufacturedSolution::displacement);
     c.initial_velocity     = field(&ManufacturedSolution::velocity);
   }
@@ -269,12 +263,12 @@ namespace tissuefem::boundary
     // Two more points per direction than the element needs, so that the
     // quadrature error stays below the discretization error.
     // (deal.II's simplex Gauss rules stop at 4 points per direction.)
-    const unsigned int n_points = discretization.fe->degree + 3;
+    const unsigned int    n_points = discretization.fe->degree + 3;
     const Quadrature<dim> quadrature
-      = discretization.simplex ?
-          Quadrature<dim>(QGaussSimplex<dim>(std::min(n_points, 4u)))
-                               : Quadrature<dim>(QGauss<dim>(n_points));
-    FEValues<dim> fe_values(*discretization.mapping,
+      = discretization.simplex
+          ? Quadrature<dim>(QGaussSimplex<dim>(std::min(n_points, 4u)))
+          : Quadrature<dim>(QGauss<dim>(n_points));
+    FEValues<dim>                    fe_values(*discretization.mapping,
                             *discretization.fe,
                             quadrature,
                             update_values | update_gradients
@@ -287,8 +281,7 @@ namespace tissuefem::boundary
       if (cell->is_locally_owned())
         {
           fe_values.reinit(cell);
-          fe_values[displacement_extractor].get_function_values(u_ghosted,
-                                                                u_h);
+          fe_values[displacement_extractor].get_function_values(u_ghosted, u_h);
           fe_values[displacement_extractor].get_function_gradients(u_ghosted,
                                                                    grad_u_h);
           for (const unsigned int q : fe_values.quadrature_point_indices())

@@ -274,8 +274,8 @@ namespace tissuefem::geometry
     {
       GridIn<dim>        grid_in(triangulation);
       std::ifstream      in(file);
-      const unsigned int reoriented =
-        extension == ".msh" ? count_inverted_gmsh_simplices(file, dim) : 0;
+      const unsigned int reoriented
+        = extension == ".msh" ? count_inverted_gmsh_simplices(file, dim) : 0;
       try
         {
           if (extension == ".msh")

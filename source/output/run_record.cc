@@ -25,12 +25,16 @@ namespace tissuefem::output
     const std::string temporary = file + ".new";
     {
       std::ofstream out(temporary);
-      require(static_cast<bool>(out), "Output/Directory", "cannot write '" + file + "'");
+      require(static_cast<bool>(out),
+              "Output/Directory",
+              "cannot write '" + file + "'");
       out << std::setprecision(std::numeric_limits<double>::max_digits10);
       for (const auto &e : entries)
         out << e.key << " = " << e.value << "  # " << e.unit << '\n';
       out.close();
-      require(static_cast<bool>(out), "Output/Directory", "cannot write '" + file + "'");
+      require(static_cast<bool>(out),
+              "Output/Directory",
+              "cannot write '" + file + "'");
     }
     require(std::rename(temporary.c_str(), file.c_str()) == 0,
             "Output/Directory",

@@ -1,9 +1,9 @@
 #include <deal.II/base/multithread_info.h>
 #include <deal.II/base/timer.h>
 
+#include <tissuefem/adaptation/stress_jump.h>
 #include <tissuefem/base/interruption.h>
 #include <tissuefem/base/parameter_tools.h>
-#include <tissuefem/adaptation/stress_jump.h>
 #include <tissuefem/output/run_record.h>
 #include <tissuefem/problems/elasticity.h>
 #include <tissuefem/solid/quantities.h>
@@ -296,13 +296,13 @@ namespace tissuefem::problems
       = std::accumulate(step_seconds.begin(), step_seconds.end(), 0.);
     std::sort(step_seconds.begin(), step_seconds.end());
     const auto percentile = [&](const double p) {
-      return step_seconds.empty() ?
-               0. :
-               step_seconds[std::min<std::size_t>(
+      return step_seconds.empty()
+               ? 0.
+               : step_seconds[std::min<std::size_t>(
                  step_seconds.size() - 1,
                  static_cast<std::size_t>(p * step_seconds.size()))];
     };
-    const double stored  = solid->stored_energy(state.u);
+    const double stored = solid->stored_energy(state.u);
     // The estimator's effectivity where the true error is known
     // (hypercube meshes: the estimator evaluates neighbours by their
     // reference coordinates).
@@ -322,13 +322,17 @@ namespace tissuefem::problems
     r.add("threads", MultithreadInfo::n_threads(), "threads per process");
     r.add("cells", triangulation.n_active_cells(), "active cells at the end");
     r.add("unknowns", solid->n_dofs(), "displacement unknowns at the end");
-    r.add("steps", step_seconds.size(), "steps reported (rows of statistics.csv)");
+    r.add("steps",
+          step_seconds.size(),
+          "steps reported (rows of statistics.csv)");
     r.add("simulated time", state.time, "time units reached");
     r.add("newton iterations", newton_iterations, "sum over steps");
     r.add("rejected attempts", rejected_attempts, "sum over steps");
     r.add("wall total", wall_seconds, "s, set-up, steps and output");
     r.add("wall steps", steps_wall, "s, sum of the integrator's steps");
-    r.add("wall assembly", assembly_seconds, "s, residual and Jacobian assembly in the steps");
+    r.add("wall assembly",
+          assembly_seconds,
+          "s, residual and Jacobian assembly in the steps");
     r.add("wall solve", solve_seconds, "s, linear solves in the steps");
     r.add("step median", percentile(0.5), "s wall per step, median");
     r.add("step p95", percentile(0.95), "s wall per step, 95th percentile");
@@ -340,10 +344,18 @@ namespace tissuefem::problems
       {
         const auto &e = error_history.last;
         r.add("L2 error", e.l2, "length units, ||u_h - u||_L2 at the end");
-        r.add("H1 error", e.h1, "||Grad(u_h - u)||_L2 at the end (length^(dim/2))");
-        r.add("relative L2 error", e.l2 / e.l2_exact, "||u_h - u||/||u|| at the end");
-        r.add("relative H1 error", e.h1 / e.h1_exact, "||Grad(u_h - u)||/||Grad u|| at the end");
-        r.add("max L2 error", error_history.max_l2, "length units, largest over the steps");
+        r.add("H1 error",
+              e.h1,
+              "||Grad(u_h - u)||_L2 at the end (length^(dim/2))");
+        r.add("relative L2 error",
+              e.l2 / e.l2_exact,
+              "||u_h - u||/||u|| at the end");
+        r.add("relative H1 error",
+              e.h1 / e.h1_exact,
+              "||Grad(u_h - u)||/||Grad u|| at the end");
+        r.add("max L2 error",
+              error_history.max_l2,
+              "length units, largest over the steps");
         r.add("L2L2 error",
               std::sqrt(error_history.l2_time_integral),
               "(sum over steps of dt ||u_h - u||_L2^2)^(1/2)");
@@ -563,17 +575,16 @@ namespace tissuefem::problems
                << " (relative " << e.h1 / e.h1_exact << "); largest L2 error "
                << "over the steps " << error_history.max_l2 << std::endl;
       }
-    write_run_record(
-      state,
-      step_seconds,
-      totals.assembly,
-      totals.solve,
-      totals.newton,
-      totals.rejected,
-      peak_bytes,
-      std::chrono::duration<double>(std::chrono::steady_clock::now()
-                                    - run_start)
-        .count());
+    write_run_record(state,
+                     step_seconds,
+                     totals.assembly,
+                     totals.solve,
+                     totals.newton,
+                     totals.rejected,
+                     peak_bytes,
+                     std::chrono::duration<double>(
+                       std::chrono::steady_clock::now() - run_start)
+                       .count());
     const auto &linear = linear_solver->statistics();
     screen << "linear solver: " << linear.solves << " solves, "
            << linear.iterations << " Krylov iterations, " << linear.setups

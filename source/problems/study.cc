@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <map>
 #include <sstream>
 
 namespace tissuefem::problems
@@ -105,16 +106,18 @@ namespace tissuefem::problems
     prm.enter_subsection("Study");
     scene = prm.get("Scene");
     require(!scene.empty(), "Study/Scene", "is empty");
-    if (!scene.empty() && scene[0] != '/' && !context.parameter_directory.empty())
+    if (!scene.empty() && scene[0] != '/'
+        && !context.parameter_directory.empty())
       scene = context.parameter_directory + "/" + scene;
-    settings      = study::parse_settings(prm.get("Settings"), ';', "Study/Settings");
-    variants = study::parse_variants(prm.get("Axes"), "Study/Axes", axes);
-    rates_against = prm.get("Rates against");
-    directory     = prm.get("Directory");
+    settings
+      = study::parse_settings(prm.get("Settings"), ';', "Study/Settings");
+    variants       = study::parse_variants(prm.get("Axes"), "Study/Axes", axes);
+    rates_against  = prm.get("Rates against");
+    directory      = prm.get("Directory");
     runs_directory = prm.get("Runs directory");
-    launcher      = prm.get("Launcher");
-    threads       = prm.get_integer("Threads per variant");
-    title         = prm.get("Title");
+    launcher       = prm.get("Launcher");
+    threads        = prm.get_integer("Threads per variant");
+    title          = prm.get("Title");
     if (title.empty())
       title = std::filesystem::path(scene).filename().string();
     const std::string rate_name = prm.get("Rate axis");
@@ -219,7 +222,8 @@ namespace tissuefem::problems
             require(enabled,
                     "Study/Reference",
                     "'manufactured' needs 'Manufactured solution/Enabled = "
-                    "true' in the scene (variant '" + v.label + "')");
+                    "true' in the scene (variant '"
+                      + v.label + "')");
           }
       }
   }
@@ -261,9 +265,9 @@ namespace tissuefem::problems
         if (outcome.exit_status == 127)
           throw InputError("cannot start '" + study::own_executable()
                            + "' for variant " + std::to_string(variant.index)
-                           + (launcher.empty() ? "" :
-                                                 " with 'Study/Launcher = "
-                                                   + launcher + "'"));
+                           + (launcher.empty()
+                                ? ""
+                                : " with 'Study/Launcher = " + launcher + "'"));
         if (outcome.exit_status > 128)
           throw Interrupted(outcome.exit_status - 128,
                             "the study stopped during variant "
@@ -307,7 +311,7 @@ namespace tissuefem::problems
             "Study/Runs directory",
             "cannot create '" + runs_directory + "'");
 
-    const auto start = std::chrono::steady_clock::now();
+    const auto start   = std::chrono::steady_clock::now();
     const auto elapsed = [&] {
       return std::chrono::duration<double>(std::chrono::steady_clock::now()
                                            - start)
@@ -317,20 +321,19 @@ namespace tissuefem::problems
     if (quantity.reference == "reference run")
       {
         reference_directory = runs_directory + "/reference";
-        screen << "study: reference run (" << quantity.reference_settings
-               << ")" << std::endl;
+        screen << "study: reference run (" << quantity.reference_settings << ")"
+               << std::endl;
         bool       reused;
-        const auto reference = run_variant(reference_variant(),
-          reference_directory,
-          reused);
+        const auto reference
+          = run_variant(reference_variant(), reference_directory, reused);
         if (!reference.finished)
           throw SolverError("the reference run did not finish ("
-                            + reference.status + "; see "
-                            + reference_directory + "/log.txt)");
+                            + reference.status + "; see " + reference_directory
+                            + "/log.txt)");
       }
 
     std::vector<study::Row> rows;
-    unsigned int            ran = 0;
+    unsigned int            ran         = 0;
     double                  run_seconds = 0;
     for (const auto &variant : variants)
       {
@@ -368,13 +371,8 @@ namespace tissuefem::problems
     const std::string what = quantity.describe();
     study::write_csv(directory + "/results.csv", axes, rows, what);
     std::ostringstream tables;
-    study::write_convergence_tables(tables,
-                                    directory,
-                                    axes,
-                                    rows,
-                                    rate_axis,
-                                    rates_against,
-                                    scene_dimension);
+    study::write_convergence_tables(
+      tables, directory, axes, rows, rate_axis, rates_against, scene_dimension);
     std::ofstream(directory + "/convergence.txt") << tables.str();
     screen << "\n" << what << "\n" << tables.str();
     screen << study::draw_charts(directory, title, axes, rows, rate_axis, what)
@@ -384,38 +382,64 @@ namespace tissuefem::problems
     std::ofstream(directory + "/summary.txt") << summary << '\n';
     screen << summary << "\n" << std::endl;
 
-    if (picker.tolerance > 0)
+    if (!picker.tolerances.empty() && picker.tolerances[0] > 0)
       {
         std::ofstream choices(directory + "/choice.txt");
-        for (unsigned int b = 0; b < picker.budgets.size(); ++b)
-          {
-            const auto choice
-              = study::pick(rows, picker.tolerance, picker.budgets[b], what);
-            choices << choice.explanation << "\n\n" << std::flush;
-            screen << choice.explanation << std::endl;
-            if (!choice.row || !picker.run_choice)
-              continue;
-            const std::string output
-              = directory + "/choice-" + std::to_string(b + 1);
-            fs::remove_all(output, ec);
-            fs::create_directories(output, ec);
-            screen << "study: running the scene with choice #"
-                   << rows[*choice.row].variant.index << " into " << output
-                   << std::endl;
-            const auto outcome
-              = study::run_child(study::own_executable(),
-                                 arguments(rows[*choice.row].variant.settings,
-                                           output),
-                                 launcher,
-                                 output + "/log.txt");
-            if (outcome.exit_status > 128)
-              throw Interrupted(outcome.exit_status - 128,
-                                "the study stopped during the run of a "
-                                "choice");
-            screen << "  " << study::describe_exit(outcome.exit_status)
-                   << " in " << outcome.wall_seconds << " s\n"
-                   << std::endl;
-          }
+        unsigned int  k = 0;
+        // The choices in brief, and the runs already made for a variant.
+        std::ostringstream                  brief;
+        std::map<unsigned int, std::string> ran_into;
+        for (const double tolerance : picker.tolerances)
+          for (const double budget : picker.budgets)
+            {
+              ++k;
+              const auto choice = study::pick(rows, tolerance, budget, what);
+              choices << choice.explanation << "\n\n" << std::flush;
+              screen << choice.explanation << std::endl;
+              brief << "  error <= " << tolerance << ", "
+                    << (budget > 0 ? "frame " + std::to_string(budget) + " s"
+                                   : std::string("no budget"))
+                    << ": "
+                    << (choice.row
+                          ? "#"
+                              + std::to_string(rows[*choice.row].variant.index)
+                              + " (" + rows[*choice.row].variant.label + ")"
+                          : std::string("none"))
+                    << '\n';
+              if (!choice.row || !picker.run_choice)
+                continue;
+              const unsigned int chosen = rows[*choice.row].variant.index;
+              if (ran_into.count(chosen))
+                {
+                  screen << "study: the scene with choice #" << chosen
+                         << " ran already, into " << ran_into[chosen] << "\n"
+                         << std::endl;
+                  continue;
+                }
+              const std::string output
+                = directory + "/choice-" + std::to_string(k);
+              ran_into[chosen] = output;
+              fs::remove_all(output, ec);
+              fs::create_directories(output, ec);
+              screen << "study: running the scene with choice #"
+                     << rows[*choice.row].variant.index << " into " << output
+                     << std::endl;
+              const auto outcome
+                = study::run_child(study::own_executable(),
+                                   arguments(rows[*choice.row].variant.settings,
+                                             output),
+                                   launcher,
+                                   output + "/log.txt");
+              if (outcome.exit_status > 128)
+                throw Interrupted(outcome.exit_status - 128,
+                                  "the study stopped during the run of a "
+                                  "choice");
+              screen << "  " << study::describe_exit(outcome.exit_status)
+                     << " in " << outcome.wall_seconds << " s\n"
+                     << std::endl;
+            }
+        choices << "Choices:\n" << brief.str();
+        screen << "Choices:\n" << brief.str() << std::endl;
       }
     screen << "study: " << rows.size() << " variants in " << elapsed()
            << " s; results in " << directory << "/results.csv" << std::endl;

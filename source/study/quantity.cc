@@ -73,13 +73,13 @@ namespace tissuefem::study
   void
   QuantityParameters::parse_parameters(ParameterHandler &prm)
   {
-    quantity           = prm.get("Quantity");
-    probe              = prm.get_integer("Probe");
+    quantity            = prm.get("Quantity");
+    probe               = prm.get_integer("Probe");
     const std::string c = prm.get("Component");
-    component = c == "all" ? -1 : c == "x" ? 0 : c == "y" ? 1 : 2;
-    reference          = prm.get("Reference");
-    reference_settings = prm.get("Reference settings");
-    relative           = prm.get_bool("Relative");
+    component           = c == "all" ? -1 : c == "x" ? 0 : c == "y" ? 1 : 2;
+    reference           = prm.get("Reference");
+    reference_settings  = prm.get("Reference settings");
+    relative            = prm.get_bool("Relative");
     reference_value.clear();
     for (const std::string &x : split_and_trim(prm.get("Reference value"), ','))
       if (!x.empty())
@@ -99,10 +99,10 @@ namespace tissuefem::study
         != std::string::npos;
     require(manufactured_quantity == (reference == "manufactured"),
             "Study/Quantity",
-            "'" + quantity + "' " +
-              (manufactured_quantity ? "needs 'Reference = manufactured'" :
-                                       "cannot be used with 'Reference = "
-                                       "manufactured'"));
+            "'" + quantity + "' "
+              + (manufactured_quantity ? "needs 'Reference = manufactured'"
+                                       : "cannot be used with 'Reference = "
+                                         "manufactured'"));
     require(reference != "value" || !reference_value.empty(),
             "Study/Reference value",
             "is needed with 'Reference = value'");
@@ -130,19 +130,19 @@ namespace tissuefem::study
       unit = "||Grad(u_h - u)||_L2";
     else
       unit = "length units";
-    const std::string against = reference == "manufactured" ?
-                                  "the manufactured solution" :
-                                reference == "value" ? "the reference value" :
-                                                       "the reference run";
+    const std::string against = reference == "manufactured"
+                                  ? "the manufactured solution"
+                                : reference == "value" ? "the reference value"
+                                                       : "the reference run";
     return quantity
-           + (quantity.rfind("probe", 0) == 0 ?
-                " " + std::to_string(probe)
-                  + (component < 0 ? "" :
-                                     std::string(" u_") + "xyz"[component]) :
-                "")
+           + (quantity.rfind("probe", 0) == 0
+                ? " " + std::to_string(probe)
+                    + (component < 0 ? ""
+                                     : std::string(" u_") + "xyz"[component])
+                : "")
            + (quantity.find("error") == std::string::npos ? " error" : "")
-           + " against " + against + " ("
-           + (relative ? "relative" : unit) + ")";
+           + " against " + against + " (" + (relative ? "relative" : unit)
+           + ")";
   }
 
 
@@ -154,8 +154,9 @@ namespace tissuefem::study
     const std::string file = directory + "/probes.csv";
     std::ifstream     in(file);
     if (!in)
-      throw InputError("'" + file + "' cannot be read (the scene needs "
-                                    "'Output/Probe points')");
+      throw InputError("'" + file
+                       + "' cannot be read (the scene needs "
+                         "'Output/Probe points')");
     std::string header;
     std::getline(in, header);
     const unsigned int n_columns = split_and_trim(header, ',').size();
@@ -215,7 +216,7 @@ namespace tissuefem::study
       if (upper == h.begin() || upper->first == t)
         return upper->second;
       const auto   lower = std::prev(upper);
-      const double w = (t - lower->first) / (upper->first - lower->first);
+      const double w     = (t - lower->first) / (upper->first - lower->first);
       std::vector<double> u(lower->second.size());
       for (unsigned int i = 0; i < u.size(); ++i)
         u[i] = (1 - w) * lower->second[i] + w * upper->second[i];
@@ -242,17 +243,18 @@ namespace tissuefem::study
     double error = 0, size = 0;
     if (p.quantity == "stored energy")
       {
-        const double reference =
-          p.reference == "value" ?
-            p.reference_value[0] :
-            output::RunRecord::read(reference_directory + "/run.txt")
-              .at("stored energy");
+        const double reference
+          = p.reference == "value"
+              ? p.reference_value[0]
+              : output::RunRecord::read(reference_directory + "/run.txt")
+                  .at("stored energy");
         error = std::abs(record.at("stored energy") - reference);
         size  = std::abs(reference);
       }
     else
       {
-        const ProbeHistory run = read_probe_history(directory, p.probe, p.component);
+        const ProbeHistory run
+          = read_probe_history(directory, p.probe, p.component);
         if (p.reference == "value")
           {
             error = distance(run.rbegin()->second, p.reference_value);
@@ -264,9 +266,9 @@ namespace tissuefem::study
               = read_probe_history(reference_directory, p.probe, p.component);
             if (p.quantity == "probe final")
               {
-                error = distance(run.rbegin()->second,
-                                 reference.rbegin()->second);
-                size  = norm(reference.rbegin()->second);
+                error
+                  = distance(run.rbegin()->second, reference.rbegin()->second);
+                size = norm(reference.rbegin()->second);
               }
             else
               for (const auto &[t, u] : reference)

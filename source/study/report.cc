@@ -30,12 +30,11 @@ namespace tissuefem::study
           continue;
         bool dominated = false;
         for (unsigned int j = 0; j < rows.size() && !dominated; ++j)
-          dominated = j != i && rows[j].finished
-                      && rows[j].error <= rows[i].error
-                      && rows[j].get("wall total") <= rows[i].get("wall total")
-                      && (rows[j].error < rows[i].error
-                          || rows[j].get("wall total")
-                               < rows[i].get("wall total"));
+          dominated
+            = j != i && rows[j].finished && rows[j].error <= rows[i].error
+              && rows[j].get("wall total") <= rows[i].get("wall total")
+              && (rows[j].error < rows[i].error
+                  || rows[j].get("wall total") < rows[i].get("wall total"));
         if (!dominated)
           front.push_back(i);
       }
@@ -74,13 +73,11 @@ namespace tissuefem::study
         out << ',' << r.status;
         if (r.finished)
           {
-            for (const char *key : {"cells",
-                                    "unknowns",
-                                    "processes",
-                                    "threads",
-                                    "steps"})
+            for (const char *key :
+                 {"cells", "unknowns", "processes", "threads", "steps"})
               out << ',' << r.get(key);
-            out << ',' << r.get("simulated time") / std::max(1., r.get("steps"));
+            out << ','
+                << r.get("simulated time") / std::max(1., r.get("steps"));
             for (const char *key : {"wall total",
                                     "wall steps",
                                     "wall assembly",
@@ -130,9 +127,10 @@ namespace tissuefem::study
       for (unsigned int i = 0; i < rows.size(); ++i)
         {
           const std::string name = series_name(rows[i], rate_axis);
-          auto              it   = std::find_if(series.begin(),
-                                   series.end(),
-                                   [&](const auto &s) { return s.first == name; });
+          auto              it
+            = std::find_if(series.begin(), series.end(), [&](const auto &s) {
+                return s.first == name;
+              });
           if (it == series.end())
             series.push_back({name, {i}});
           else
@@ -176,13 +174,14 @@ namespace tissuefem::study
               continue;
             ++n_rows;
             table.add_value(axes.empty() ? "variant" : axes[rate_axis].name,
-                            r.variant.axis_labels.empty() ?
-                              std::to_string(r.variant.index) :
-                              r.variant.axis_labels[rate_axis]);
+                            r.variant.axis_labels.empty()
+                              ? std::to_string(r.variant.index)
+                              : r.variant.axis_labels[rate_axis]);
             table.add_value("cells", static_cast<unsigned int>(r.get("cells")));
             table.add_value("unknowns",
                             static_cast<unsigned int>(r.get("unknowns")));
-            const double dt = r.get("simulated time") / std::max(1., r.get("steps"));
+            const double dt
+              = r.get("simulated time") / std::max(1., r.get("steps"));
             table.add_value("mean dt", dt);
             table.add_value("1/dt", 1. / dt);
             table.add_value("error", r.error);
@@ -190,14 +189,14 @@ namespace tissuefem::study
             if (previous)
               {
                 const double order
-                  = rates_against == "time step" ?
-                      std::log(previous->error / r.error)
-                        / std::log(previous->get("simulated time")
+                  = rates_against == "time step"
+                      ? std::log(previous->error / r.error)
+                          / std::log(previous->get("simulated time")
                                      / std::max(1., previous->get("steps"))
-                                     / dt) :
-                      dim * std::log(previous->error / r.error)
-                        / std::log(r.get("unknowns")
-                                   / previous->get("unknowns"));
+                                     / dt)
+                      : dim * std::log(previous->error / r.error)
+                          / std::log(r.get("unknowns")
+                                     / previous->get("unknowns"));
                 rates << quoted(name) << ',' << previous->variant.index << ','
                       << r.variant.index << ',' << order << '\n';
               }
@@ -211,15 +210,11 @@ namespace tissuefem::study
         table.set_precision("wall (s)", 3);
         table.set_precision("mean dt", 3);
         if (rates_against == "time step")
-          table.evaluate_convergence_rates("error",
-                                           "1/dt",
-                                           ConvergenceTable::reduction_rate_log2,
-                                           1);
+          table.evaluate_convergence_rates(
+            "error", "1/dt", ConvergenceTable::reduction_rate_log2, 1);
         else if (rates_against == "unknowns")
-          table.evaluate_convergence_rates("error",
-                                           "unknowns",
-                                           ConvergenceTable::reduction_rate_log2,
-                                           dim);
+          table.evaluate_convergence_rates(
+            "error", "unknowns", ConvergenceTable::reduction_rate_log2, dim);
         table.omit_column_from_convergence_rate_evaluation("wall (s)");
         out << "series: " << name << '\n';
         table.write_text(out, TableHandler::org_mode_table);
@@ -229,14 +224,14 @@ namespace tissuefem::study
 
 
   std::string
-  draw_charts(const std::string       &directory,
-              const std::string       &title,
+  draw_charts(const std::string &directory,
+              const std::string &title,
               const std::vector<Axis> &,
-              const std::vector<Row>  &rows,
-              const unsigned int       rate_axis,
-              const std::string       &quantity)
+              const std::vector<Row> &rows,
+              const unsigned int      rate_axis,
+              const std::string      &quantity)
   {
-    const auto series = series_of(rows, rate_axis);
+    const auto    series = series_of(rows, rate_axis);
     std::ofstream gp(directory + "/charts.gp");
     gp << "# Drawn by tissuefem's study: gnuplot charts.gp (in this "
           "directory)\n"
@@ -264,14 +259,18 @@ namespace tissuefem::study
         if (n == 0)
           continue;
         const std::string sep = unknowns_plot.empty() ? "" : ", \\\n  ";
-        unknowns_plot += sep + quoted(file) + " using 1:3 with linespoints lw 2 "
-                         "pt " + std::to_string(s % 13 + 1) + " lc " +
-                         std::to_string(s + 1) + " title " +
-                         quoted(series[s].first);
-        wall_plot += sep + quoted(file) + " using 2:3 with linespoints lw 1 "
-                     "pt " + std::to_string(s % 13 + 1) + " lc " +
-                     std::to_string(s + 1) + " title " +
-                     quoted(series[s].first);
+        unknowns_plot += sep + quoted(file)
+                         + " using 1:3 with linespoints lw 2 "
+                           "pt "
+                         + std::to_string(s % 13 + 1) + " lc "
+                         + std::to_string(s + 1) + " title "
+                         + quoted(series[s].first);
+        wall_plot += sep + quoted(file)
+                     + " using 2:3 with linespoints lw 1 "
+                       "pt "
+                     + std::to_string(s % 13 + 1) + " lc "
+                     + std::to_string(s + 1) + " title "
+                     + quoted(series[s].first);
       }
     if (unknowns_plot.empty())
       return "no charts: no variant finished with a positive error";
@@ -316,8 +315,8 @@ namespace tissuefem::study
     const auto describe = [&](const Row &r) {
       std::ostringstream d;
       d << std::setprecision(3) << "#" << r.variant.index << " ("
-        << r.variant.label << "; error " << r.error << ", " << r.get("wall total")
-        << " s)";
+        << r.variant.label << "; error " << r.error << ", "
+        << r.get("wall total") << " s)";
       return d.str();
     };
     const auto front = pareto_front(rows);
@@ -335,7 +334,8 @@ namespace tissuefem::study
               && (!best || r.get("wall total") < best->get("wall total")))
             best = &r;
         s << " For errors up to " << tol << ", the fastest is "
-          << (best ? describe(*best) : std::string("none (no variant is that accurate)"))
+          << (best ? describe(*best)
+                   : std::string("none (no variant is that accurate)"))
           << '.';
       }
     unsigned int failed = 0;

@@ -25,10 +25,12 @@ namespace tissuefem::study
                        "/proc/self/exe to run a study's variants");
     // A rebuilt executable replaces the running one's file: its new file
     // has the same path.
-    std::string name           = path.string();
+    std::string       name     = path.string();
     const std::string replaced = " (deleted)";
     if (name.size() > replaced.size()
-        && name.compare(name.size() - replaced.size(), replaced.size(), replaced)
+        && name.compare(name.size() - replaced.size(),
+                        replaced.size(),
+                        replaced)
              == 0)
       name.resize(name.size() - replaced.size());
     return name;
@@ -54,7 +56,8 @@ namespace tissuefem::study
       argv.push_back(w.data());
     argv.push_back(nullptr);
 
-    const int log = ::open(log_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int log
+      = ::open(log_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     if (log < 0)
       throw InputError("Study/Directory: cannot write '" + log_file + "'");
     const auto  start = std::chrono::steady_clock::now();
@@ -85,7 +88,7 @@ namespace tissuefem::study
       = std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
           .count();
     outcome.peak_memory_mb = usage.ru_maxrss / 1024.;
-    outcome.exit_status    = WIFEXITED(status)   ? WEXITSTATUS(status)
+    outcome.exit_status    = WIFEXITED(status)     ? WEXITSTATUS(status)
                              : WIFSIGNALED(status) ? 128 + WTERMSIG(status)
                                                    : 255;
     return outcome;
@@ -108,8 +111,9 @@ namespace tissuefem::study
         case 127:
           return "could not start (exit 127)";
         default:
-          return status > 128 ? "ended by signal " + std::to_string(status - 128)
-                              : "exit " + std::to_string(status);
+          return status > 128
+                   ? "ended by signal " + std::to_string(status - 128)
+                   : "exit " + std::to_string(status);
       }
   }
 } // namespace tissuefem::study

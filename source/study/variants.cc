@@ -64,11 +64,11 @@ namespace tissuefem::study
                     "value '" + value + "' of axis '" + axis.name
                       + "' has unbalanced braces");
             AxisValue v;
-            v.label    = Utilities::trim(value.substr(0, open));
-            v.settings = parse_settings(value.substr(open + 1,
-                                                     close - open - 1),
-                                        '&',
-                                        parameter);
+            v.label = Utilities::trim(value.substr(0, open));
+            v.settings
+              = parse_settings(value.substr(open + 1, close - open - 1),
+                               '&',
+                               parameter);
             require(!v.label.empty(),
                     parameter,
                     "value '" + value + "' of axis '" + axis.name
@@ -108,14 +108,14 @@ namespace tissuefem::study
         variants[i].index = i + 1;
         for (unsigned int a = 0; a < axes.size(); ++a)
           {
-            const std::string &name = axes[a].name;
+            const std::string &name  = axes[a].name;
             const auto         slash = name.rfind('/');
             // One-parameter axes are labelled 'Name=value', named ones by
             // their value label alone.
             const std::string piece
-              = slash == std::string::npos ?
-                  variants[i].axis_labels[a] :
-                  name.substr(slash + 1) + "=" + variants[i].axis_labels[a];
+              = slash == std::string::npos
+                  ? variants[i].axis_labels[a]
+                  : name.substr(slash + 1) + "=" + variants[i].axis_labels[a];
             variants[i].axis_pieces.push_back(piece);
             variants[i].label += (a ? ", " : "") + piece;
           }
@@ -134,8 +134,8 @@ namespace tissuefem::study
     std::string rest = text;
     while (true)
       {
-        const auto        split = rest.find("||");
-        const std::string block = rest.substr(0, split);
+        const auto        split      = rest.find("||");
+        const std::string block      = rest.substr(0, split);
         const auto        block_axes = parse_axes(block, parameter);
         if (axes.empty())
           axes = block_axes;

@@ -41,13 +41,13 @@ namespace tissuefem::boundary
 
     struct Dirichlet
     {
-      types::boundary_id                   id;
-      ComponentMask                        mask;
+      types::boundary_id             id;
+      ComponentMask                  mask;
       std::unique_ptr<Function<dim>> displacement;
     };
     struct Neumann
     {
-      types::boundary_id                   id;
+      types::boundary_id             id;
       std::unique_ptr<Function<dim>> traction;
     };
 
@@ -66,7 +66,7 @@ namespace tissuefem::boundary
     /// Whether every body force expression is the literal "0".
     bool body_force_is_zero;
     /// Acceleration of gravity (m/s^2 if SI); multiplied by rho_0.
-    Tensor<1, dim>                       gravity;
+    Tensor<1, dim>                 gravity;
     std::unique_ptr<Function<dim>> initial_displacement;
     std::unique_ptr<Function<dim>> initial_velocity;
 

@@ -87,12 +87,12 @@ namespace tissuefem::boundary
            const double                      t) const;
 
   private:
-    ManufacturedParameters            parameters;
-    const materials::Interface<dim>  &material;
-    double                            density;
-    materials::TangentMethod          tangent_method;
-    bool                              inertia;
-    std::vector<types::boundary_id>   boundary_ids;
+    ManufacturedParameters           parameters;
+    const materials::Interface<dim> &material;
+    double                           density;
+    materials::TangentMethod         tangent_method;
+    bool                             inertia;
+    std::vector<types::boundary_id>  boundary_ids;
 
     /// sin(omega t + phi_i).
     double

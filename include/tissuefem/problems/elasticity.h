@@ -57,16 +57,16 @@ namespace tissuefem::problems
     tool::ToolParameters                 tool_parameters;
     boundary::ManufacturedParameters     manufactured_parameters;
 
-    parallel::shared::Triangulation<dim>               triangulation;
-    std::unique_ptr<materials::MaterialSet<dim>>       materials;
-    std::unique_ptr<boundary::BoundaryConditions<dim>> boundary_conditions;
-    std::unique_ptr<solid::Discretization<dim>>        discretization;
-    std::unique_ptr<solid::Solid<dim>>                 solid;
-    std::unique_ptr<time::Interface>                   integrator;
-    std::unique_ptr<solvers::LinearSolver>             linear_solver;
-    std::unique_ptr<output::OutputWriter<dim>>         writer;
-    std::unique_ptr<adaptation::MeshAdaptation<dim>>   adaptation;
-    std::unique_ptr<tool::GraspTool<dim>>              tool;
+    parallel::shared::Triangulation<dim>                 triangulation;
+    std::unique_ptr<materials::MaterialSet<dim>>         materials;
+    std::unique_ptr<boundary::BoundaryConditions<dim>>   boundary_conditions;
+    std::unique_ptr<solid::Discretization<dim>>          discretization;
+    std::unique_ptr<solid::Solid<dim>>                   solid;
+    std::unique_ptr<time::Interface>                     integrator;
+    std::unique_ptr<solvers::LinearSolver>               linear_solver;
+    std::unique_ptr<output::OutputWriter<dim>>           writer;
+    std::unique_ptr<adaptation::MeshAdaptation<dim>>     adaptation;
+    std::unique_ptr<tool::GraspTool<dim>>                tool;
     std::unique_ptr<boundary::ManufacturedSolution<dim>> manufactured;
 
     /// Errors against the manufactured solution, accumulated over steps.

@@ -35,7 +35,7 @@ namespace tissuefem::problems
     run() override;
 
   private:
-    RunContext                 context;
+    RunContext  context;
     std::string scene, directory, runs_directory, launcher, title;
     std::vector<study::Setting> settings;
     std::vector<study::Axis>    axes;

@@ -2,6 +2,7 @@
 
 #include <tissuefem/study/variants.h>
 
+#include <algorithm>
 #include <map>
 #include <ostream>
 #include <string>
@@ -34,6 +35,13 @@ namespace tissuefem::study
     /// costs a user (s per time unit).
     double
     cost() const;
+
+    /// The mean step: simulated time / steps (time units).
+    double
+    mean_step() const
+    {
+      return get("simulated time") / std::max(1., get("steps"));
+    }
   };
 
   /// Indices (into @p rows) of the finished variants on the Pareto front
