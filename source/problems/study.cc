@@ -366,6 +366,14 @@ namespace tissuefem::problems
                  << row.get("wall total") << " s, error " << row.error;
         screen << std::endl;
         rows.push_back(row);
+        // A signal to the study alone (not to the running variant) stops it
+        // here, between variants.
+        if (const int signal = interruption_requested())
+          throw Interrupted(signal,
+                            "the study stopped after variant "
+                              + std::to_string(variant.index)
+                              + "; run it again to resume (finished variants "
+                                "are kept)");
       }
 
     const std::string what = quantity.describe();

@@ -259,18 +259,15 @@ namespace tissuefem::study
         if (n == 0)
           continue;
         const std::string sep = unknowns_plot.empty() ? "" : ", \\\n  ";
-        unknowns_plot += sep + quoted(file)
-                         + " using 1:3 with linespoints lw 2 "
-                           "pt "
-                         + std::to_string(s % 13 + 1) + " lc "
-                         + std::to_string(s + 1) + " title "
-                         + quoted(series[s].first);
-        wall_plot += sep + quoted(file)
-                     + " using 2:3 with linespoints lw 1 "
-                       "pt "
-                     + std::to_string(s % 13 + 1) + " lc "
-                     + std::to_string(s + 1) + " title "
-                     + quoted(series[s].first);
+        // One line per series, the same point type and colour in both.
+        const auto line = [&](const std::string &columns) {
+          return sep + quoted(file) + " using " + columns
+                 + " with linespoints lw 2 pt " + std::to_string(s % 13 + 1)
+                 + " lc " + std::to_string(s + 1) + " title "
+                 + quoted(series[s].first);
+        };
+        unknowns_plot += line("1:3");
+        wall_plot += line("2:3");
       }
     if (unknowns_plot.empty())
       return "no charts: no variant finished with a positive error";

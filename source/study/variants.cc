@@ -15,6 +15,13 @@ namespace tissuefem::study
         if (item.empty())
           continue;
         const auto equals = item.find('=');
+        // A piece without '=' continues the previous value: values such as
+        // probe points or per-component expressions contain separators.
+        if (equals == std::string::npos && !settings.empty())
+          {
+            settings.back().value += std::string(1, separator) + " " + item;
+            continue;
+          }
         require(equals != std::string::npos && equals > 0,
                 parameter,
                 "'" + item + "' is not 'Subsection/Name = value'");

@@ -52,7 +52,9 @@ namespace tissuefem::study
   };
 
   /// Settings from "Path/Name = value; Path/Name = value" (';' separates,
-  /// '&' also does inside braces). Throws InputError naming @p parameter.
+  /// '&' does inside braces); a piece without '=' belongs to the value
+  /// before it ("Output/Probe points = 0, 0; 1, 1"). Throws InputError
+  /// naming @p parameter.
   std::vector<Setting>
   parse_settings(const std::string &text,
                  const char         separator,
