@@ -24,9 +24,16 @@ namespace tissuefem::geometry
     {
       prm.declare_entry("Source",
                         "box",
-                        Patterns::Selection("box|file"),
+                        Patterns::Selection("box|L-shape|file"),
                         "'box': an interval, rectangle or box from the corners "
-                        "and subdivisions below; 'file': read 'Mesh file'.");
+                        "and subdivisions below; 'L-shape' (2D, 3D): the "
+                        "square or cube [a, b]^dim (a, b the first coordinates "
+                        "of the corners) without the quadrant or octant "
+                        "[(a+b)/2, b]^dim, in 3 or 7 cells (refine with "
+                        "'Global refinements'): a re-entrant corner where the "
+                        "stress is singular; boundary ids from 'Boundary id "
+                        "predicates', as for files; 'file': read 'Mesh "
+                        "file'.");
       prm.declare_entry("Cell type",
                         "hypercube",
                         Patterns::Selection("hypercube|simplex"),
@@ -365,6 +372,21 @@ namespace tissuefem::geometry
   {
     if (parameters.source == "file")
       read_mesh_file(parameters, triangulation);
+    else if (parameters.source == "L-shape")
+      {
+        require(dim > 1, "Geometry/Source", "'L-shape' needs 2 or 3 dimensions");
+        const Point<dim> lower
+          = parse_leading_point<dim>(parameters.lower_corner,
+                                     "Geometry/Lower corner");
+        const Point<dim> upper
+          = parse_leading_point<dim>(parameters.upper_corner,
+                                     "Geometry/Upper corner");
+        require(upper[0] > lower[0],
+                "Geometry/Upper corner",
+                "must exceed 'Lower corner' in its first coordinate");
+        if constexpr (dim > 1)
+          GridGenerator::hyper_L(triangulation, lower[0], upper[0]);
+      }
     else
       build_box(parameters, triangulation);
     if (parameters.global_refinements > 0
@@ -382,7 +404,7 @@ namespace tissuefem::geometry
     else
       triangulation.refine_global(parameters.global_refinements);
     apply_boundary_predicates(parameters.boundary_id_predicates,
-                              parameters.source == "file",
+                              parameters.source != "box",
                               triangulation);
     apply_material_predicates(parameters.material_id_predicates, triangulation);
   }
