@@ -183,17 +183,24 @@ namespace tissuefem::geometry
     }
 
 
+    /// 'Lower corner' and 'Upper corner' for a generated mesh.
+    template <int dim>
+    std::pair<Point<dim>, Point<dim>>
+    corners(const GeometryParameters &parameters)
+    {
+      return {parse_leading_point<dim>(parameters.lower_corner,
+                                       "Geometry/Lower corner"),
+              parse_leading_point<dim>(parameters.upper_corner,
+                                       "Geometry/Upper corner")};
+    }
+
+
     template <int dim>
     void
     build_box(const GeometryParameters &parameters,
               Triangulation<dim>       &triangulation)
     {
-      const Point<dim> lower
-        = parse_leading_point<dim>(parameters.lower_corner,
-                                   "Geometry/Lower corner");
-      const Point<dim> upper
-        = parse_leading_point<dim>(parameters.upper_corner,
-                                   "Geometry/Upper corner");
+      const auto [lower, upper] = corners<dim>(parameters);
       for (unsigned int d = 0; d < dim; ++d)
         require(upper[d] > lower[d],
                 "Geometry/Upper corner",
@@ -374,13 +381,10 @@ namespace tissuefem::geometry
       read_mesh_file(parameters, triangulation);
     else if (parameters.source == "L-shape")
       {
-        require(dim > 1, "Geometry/Source", "'L-shape' needs 2 or 3 dimensions");
-        const Point<dim> lower
-          = parse_leading_point<dim>(parameters.lower_corner,
-                                     "Geometry/Lower corner");
-        const Point<dim> upper
-          = parse_leading_point<dim>(parameters.upper_corner,
-                                     "Geometry/Upper corner");
+        require(dim > 1,
+                "Geometry/Source",
+                "'L-shape' needs 2 or 3 dimensions");
+        const auto [lower, upper] = corners<dim>(parameters);
         require(upper[0] > lower[0],
                 "Geometry/Upper corner",
                 "must exceed 'Lower corner' in its first coordinate");

@@ -290,7 +290,8 @@ namespace tissuefem::problems
                                     const unsigned int  newton_iterations,
                                     const unsigned int  rejected_attempts,
                                     const double        peak_bytes,
-                                    const double        wall_seconds)
+                                    const double        wall_seconds,
+                                    const double        stored)
   {
     const double steps_wall
       = std::accumulate(step_seconds.begin(), step_seconds.end(), 0.);
@@ -302,7 +303,6 @@ namespace tissuefem::problems
                  step_seconds.size() - 1,
                  static_cast<std::size_t>(p * step_seconds.size()))];
     };
-    const double stored = solid->stored_energy(state.u);
     // The estimator's effectivity where the true error is known
     // (hypercube meshes: the estimator evaluates neighbours by their
     // reference coordinates).
@@ -545,9 +545,9 @@ namespace tissuefem::problems
                   "length units; smallest det F)"
                << std::endl;
       }
+    const double       final_energy = solid->stored_energy(state.u);
     std::ostringstream energy;
-    energy << "final elastic energy " << std::setprecision(8)
-           << solid->stored_energy(state.u);
+    energy << "final elastic energy " << std::setprecision(8) << final_energy;
     writer->summary_line(energy.str());
     screen << energy.str() << " (energy units, int Psi dV)" << std::endl;
     Utilities::System::MemoryStats memory;
@@ -584,7 +584,8 @@ namespace tissuefem::problems
                      peak_bytes,
                      std::chrono::duration<double>(
                        std::chrono::steady_clock::now() - run_start)
-                       .count());
+                       .count(),
+                     final_energy);
     const auto &linear = linear_solver->statistics();
     screen << "linear solver: " << linear.solves << " solves, "
            << linear.iterations << " Krylov iterations, " << linear.setups

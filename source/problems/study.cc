@@ -230,6 +230,35 @@ namespace tissuefem::problems
 
 
   template <int dim>
+  study::RunOutcome
+  Study<dim>::launch(const std::vector<study::Setting> &extra,
+                     const std::string                 &output,
+                     const std::string                 &what) const
+  {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    fs::remove_all(output, ec);
+    fs::create_directories(output, ec);
+    require(!ec, "Study/Directory", "cannot create '" + output + "'");
+    const study::RunOutcome outcome = study::run_child(study::own_executable(),
+                                                       arguments(extra, output),
+                                                       launcher,
+                                                       output + "/log.txt");
+    if (outcome.exit_status == 127)
+      throw InputError(
+        "cannot start '" + study::own_executable() + "' for " + what
+        + (launcher.empty() ? ""
+                            : " with 'Study/Launcher = " + launcher + "'"));
+    if (outcome.exit_status > 128)
+      throw Interrupted(outcome.exit_status - 128,
+                        "the study stopped during " + what
+                          + "; run it again to resume (finished variants "
+                            "are kept)");
+    return outcome;
+  }
+
+
+  template <int dim>
   study::Row
   Study<dim>::run_variant(const study::Variant &variant,
                           const std::string    &output,
@@ -253,28 +282,11 @@ namespace tissuefem::problems
       }
     if (!reused)
       {
-        std::error_code ec;
-        fs::remove_all(output, ec);
-        fs::create_directories(output, ec);
-        require(!ec, "Study/Directory", "cannot create '" + output + "'");
         const study::RunOutcome outcome
-          = study::run_child(study::own_executable(),
-                             arguments(variant.settings, output),
-                             launcher,
-                             output + "/log.txt");
-        if (outcome.exit_status == 127)
-          throw InputError("cannot start '" + study::own_executable()
-                           + "' for variant " + std::to_string(variant.index)
-                           + (launcher.empty()
-                                ? ""
-                                : " with 'Study/Launcher = " + launcher + "'"));
-        if (outcome.exit_status > 128)
-          throw Interrupted(outcome.exit_status - 128,
-                            "the study stopped during variant "
-                              + std::to_string(variant.index) + " ("
-                              + variant.label
-                              + "); run it again to resume (finished "
-                                "variants are kept)");
+          = launch(variant.settings,
+                   output,
+                   "variant " + std::to_string(variant.index) + " ("
+                     + variant.label + ")");
         exit             = outcome.exit_status;
         row.wall_seconds = outcome.wall_seconds;
         // The stamp last, through a temporary name: it marks the variant
@@ -285,6 +297,7 @@ namespace tissuefem::problems
               << exit << ' ' << std::setprecision(17) << row.wall_seconds
               << '\n';
         }
+        std::error_code ec;
         fs::rename(stamp + ".new", stamp, ec);
       }
     row.finished = exit == 0 && fs::exists(output + "/run.txt");
@@ -427,21 +440,13 @@ namespace tissuefem::problems
               const std::string output
                 = directory + "/choice-" + std::to_string(k);
               ran_into[chosen] = output;
-              fs::remove_all(output, ec);
-              fs::create_directories(output, ec);
               screen << "study: running the scene with choice #"
                      << rows[*choice.row].variant.index << " into " << output
                      << std::endl;
               const auto outcome
-                = study::run_child(study::own_executable(),
-                                   arguments(rows[*choice.row].variant.settings,
-                                             output),
-                                   launcher,
-                                   output + "/log.txt");
-              if (outcome.exit_status > 128)
-                throw Interrupted(outcome.exit_status - 128,
-                                  "the study stopped during the run of a "
-                                  "choice");
+                = launch(rows[*choice.row].variant.settings,
+                         output,
+                         "the run of choice #" + std::to_string(chosen));
               screen << "  " << study::describe_exit(outcome.exit_status)
                      << " in " << outcome.wall_seconds << " s\n"
                      << std::endl;

@@ -76,8 +76,7 @@ namespace tissuefem::study
             for (const char *key :
                  {"cells", "unknowns", "processes", "threads", "steps"})
               out << ',' << r.get(key);
-            out << ','
-                << r.get("simulated time") / std::max(1., r.get("steps"));
+            out << ',' << r.mean_step();
             for (const char *key : {"wall total",
                                     "wall steps",
                                     "wall assembly",
@@ -180,8 +179,7 @@ namespace tissuefem::study
             table.add_value("cells", static_cast<unsigned int>(r.get("cells")));
             table.add_value("unknowns",
                             static_cast<unsigned int>(r.get("unknowns")));
-            const double dt
-              = r.get("simulated time") / std::max(1., r.get("steps"));
+            const double dt = r.mean_step();
             table.add_value("mean dt", dt);
             table.add_value("1/dt", 1. / dt);
             table.add_value("error", r.error);
@@ -191,9 +189,7 @@ namespace tissuefem::study
                 const double order
                   = rates_against == "time step"
                       ? std::log(previous->error / r.error)
-                          / std::log(previous->get("simulated time")
-                                     / std::max(1., previous->get("steps"))
-                                     / dt)
+                          / std::log(previous->mean_step() / dt)
                       : dim * std::log(previous->error / r.error)
                           / std::log(r.get("unknowns")
                                      / previous->get("unknowns"));

@@ -81,7 +81,8 @@ namespace tissuefem::problems
     record_error(const time::State &state);
 
     /// Writes '<Output/Directory>/run.txt' (output::RunRecord): sizes,
-    /// wall times, memory, energies and errors of the finished run.
+    /// wall times, memory, energies and errors of the finished run
+    /// (@p stored_energy: int Psi dV of the final state, computed once).
     void
     write_run_record(const time::State  &state,
                      std::vector<double> step_seconds,
@@ -90,7 +91,8 @@ namespace tissuefem::problems
                      const unsigned int  newton_iterations,
                      const unsigned int  rejected_attempts,
                      const double        peak_bytes,
-                     const double        wall_seconds);
+                     const double        wall_seconds,
+                     const double        stored_energy);
 
     /// Lets the tool grasp or release if due (before a step).
     void

@@ -4,6 +4,7 @@
 #include <tissuefem/study/picker.h>
 #include <tissuefem/study/quantity.h>
 #include <tissuefem/study/report.h>
+#include <tissuefem/study/runner.h>
 #include <tissuefem/study/variants.h>
 
 namespace tissuefem::problems
@@ -57,6 +58,17 @@ namespace tissuefem::problems
     std::vector<std::string>
     arguments(const std::vector<study::Setting> &extra,
               const std::string                 &output) const;
+
+    /**
+     * Runs the scene with @p extra settings as a child process into a
+     * fresh @p output (described as @p what in messages). Throws
+     * InputError if the executable cannot start, Interrupted if a signal
+     * ended the run.
+     */
+    study::RunOutcome
+    launch(const std::vector<study::Setting> &extra,
+           const std::string                 &output,
+           const std::string                 &what) const;
 
     /**
      * Runs (or, if it finished before with the same settings, reuses) one
