@@ -30,6 +30,18 @@ namespace tissuefem::solid
                       "Gauss points per direction (for simplices: the "
                       "simplex Gauss rule with that many points per "
                       "direction, at most 4); 0 chooses degree + 1.");
+    prm.declare_entry(
+      "Element kernel",
+      "automatic",
+      Patterns::Selection("automatic|general"),
+      "'automatic': linear triangles and tetrahedra in the displacement "
+      "formulation use the lean kernel (one stress and tangent evaluation "
+      "per cell from cached shape gradients, closed-form P1 mass, cells "
+      "batched per material, rows added in parallel; "
+      "solid/linear_simplex_kernel.h), every other element the general "
+      "quadrature loop. 'general': the quadrature loop everywhere (the "
+      "reference the lean kernel is tested against; same results to "
+      "round-off, several times slower on tetrahedra).");
     prm.leave_subsection();
   }
 
@@ -40,6 +52,7 @@ namespace tissuefem::solid
     prm.enter_subsection("Finite element");
     degree            = prm.get_integer("Polynomial degree");
     quadrature_points = prm.get_integer("Quadrature points");
+    lean_kernel       = prm.get("Element kernel") == "automatic";
     prm.leave_subsection();
   }
 
@@ -50,6 +63,7 @@ namespace tissuefem::solid
                                       const unsigned int n_components)
       : dof_handler(triangulation)
       , simplex(geometry::is_simplex_mesh(triangulation))
+      , lean_kernel(parameters.lean_kernel)
   {
     const unsigned int k = parameters.degree;
     const unsigned int n_q

@@ -167,6 +167,19 @@ namespace tissuefem::solid
     discretization.initialize_vector(ghosted_u, true);
     discretization.initialize_vector(ghosted_w, true);
     build_direct_access();
+    lean.reset();
+    if (discretization.lean_kernel
+        && LinearSimplexKernel<dim>::applies(discretization, materials, cache))
+      {
+        lean = std::make_unique<LinearSimplexKernel<dim>>();
+        lean->build(cache,
+                    fibre_field,
+                    materials,
+                    access.ghost_index,
+                    access.direct,
+                    access.row,
+                    discretization.locally_owned.n_elements());
+      }
   }
 
 
@@ -336,6 +349,11 @@ namespace tissuefem::solid
       = request.external && !boundary_conditions.neumann.empty();
     const AffineConstraints<double> &rows = *request.rows;
 
+    if (uses_lean_kernel(request))
+      {
+        assemble_lean(request, residual);
+        return;
+      }
     boundary_conditions.set_time(request.time);
     discretization.initialize_assembly_vector(residual);
     if (request.jacobian)
@@ -601,6 +619,16 @@ namespace tissuefem::solid
     if (request.jacobian)
       jacobian_matrix.compress(VectorOperation::add);
 
+    report_inversions(inverted);
+  }
+
+
+  template <int dim>
+  void
+  Solid<dim>::report_inversions(
+    const std::vector<std::tuple<unsigned int, double, Point<dim>>> &inverted)
+    const
+  {
     // Every process must learn of an inversion anywhere: gather (active
     // cell index, det F, centre) of the inverted cells.
     std::vector<double> flat;

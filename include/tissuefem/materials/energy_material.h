@@ -223,7 +223,38 @@ namespace tissuefem::materials
           case TangentMethod::hand_coded:
             hand_coded_stress_and_tangent(F, fibre, P, A);
             return;
+          case TangentMethod::fastest:
+            if (this->has_hand_coded_tangent())
+              hand_coded_stress_and_tangent(F, fibre, P, A);
+            else
+              stress_and_tangent(
+                F, fibre, P, A, TangentMethod::automatic_differentiation);
+            return;
         }
+    }
+
+    // The batch forms call this class's own functions (no virtual dispatch
+    // per point).
+    void
+    stresses(const unsigned int    n,
+             const Tensor<2, dim> *F,
+             const Tensor<1, dim> *fibre,
+             Tensor<2, dim>       *P) const override
+    {
+      for (unsigned int i = 0; i < n; ++i)
+        P[i] = EnergyMaterial::stress(F[i], fibre[i]);
+    }
+
+    void
+    stresses_and_tangents(const unsigned int    n,
+                          const Tensor<2, dim> *F,
+                          const Tensor<1, dim> *fibre,
+                          Tensor<2, dim>       *P,
+                          Tensor<4, dim>       *A,
+                          const TangentMethod   method) const override
+    {
+      for (unsigned int i = 0; i < n; ++i)
+        EnergyMaterial::stress_and_tangent(F[i], fibre[i], P[i], A[i], method);
     }
 
     bool

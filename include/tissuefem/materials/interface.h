@@ -25,7 +25,11 @@ namespace tissuefem::materials
     /// numbers, the approach of deal.II's step-71. Kept for comparison.
     dealii_ad_helper,
     /// Closed-form stress and tangent, where a material provides them.
-    hand_coded
+    hand_coded,
+    /// hand_coded where the model has a closed form
+    /// (Interface::has_hand_coded_tangent()), else
+    /// automatic_differentiation.
+    fastest
   };
 
   /// The names of the tangent methods, separated by '|'.
@@ -74,6 +78,32 @@ namespace tissuefem::materials
                        Tensor<2, dim>       &P,
                        Tensor<4, dim>       &A,
                        const TangentMethod   method) const = 0;
+
+    /// The stresses at @p n points (F[i], fibre[i]) in one call, so that
+    /// element kernels make one virtual call per batch of cells; models
+    /// override it with a loop the compiler can inline.
+    virtual void
+    stresses(const unsigned int    n,
+             const Tensor<2, dim> *F,
+             const Tensor<1, dim> *fibre,
+             Tensor<2, dim>       *P) const
+    {
+      for (unsigned int i = 0; i < n; ++i)
+        P[i] = stress(F[i], fibre[i]);
+    }
+
+    /// Stresses and tangents at @p n points in one call (see stresses()).
+    virtual void
+    stresses_and_tangents(const unsigned int    n,
+                          const Tensor<2, dim> *F,
+                          const Tensor<1, dim> *fibre,
+                          Tensor<2, dim>       *P,
+                          Tensor<4, dim>       *A,
+                          const TangentMethod   method) const
+    {
+      for (unsigned int i = 0; i < n; ++i)
+        stress_and_tangent(F[i], fibre[i], P[i], A[i], method);
+    }
 
     /// Whether the energy depends on the fibre direction.
     virtual bool

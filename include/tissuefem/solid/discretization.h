@@ -32,6 +32,8 @@ namespace tissuefem::solid
     unsigned int degree;
     /// Gauss points per direction; 0 means degree + 1.
     unsigned int quadrature_points;
+    /// Whether linear simplices may use the lean element kernel.
+    bool lean_kernel = true;
   };
 
   /**
@@ -93,6 +95,8 @@ namespace tissuefem::solid
     Quadrature<dim - 1>                 face_quadrature;
     DoFHandler<dim>                     dof_handler;
     bool                                simplex;
+    /// 'Finite element/Element kernel' is 'automatic'.
+    bool lean_kernel = true;
 
     IndexSet                  locally_owned;
     IndexSet                  locally_relevant;

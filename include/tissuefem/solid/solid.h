@@ -8,6 +8,7 @@
 #include <tissuefem/solid/cell_cache.h>
 #include <tissuefem/solid/discretization.h>
 #include <tissuefem/solid/fibre_field.h>
+#include <tissuefem/solid/linear_simplex_kernel.h>
 #include <tissuefem/solid/operators.h>
 
 #include <map>
@@ -182,6 +183,14 @@ namespace tissuefem::solid
       return boundary_conditions;
     }
 
+    /// Whether assembly uses the lean kernel of linear simplices on this
+    /// mesh ('Finite element/Element kernel').
+    bool
+    lean_kernel_active() const
+    {
+      return lean != nullptr;
+    }
+
     const FibreField<dim> &
     fibres() const
     {
@@ -234,6 +243,24 @@ namespace tissuefem::solid
     void
     assemble(const Request &request, VectorType &residual);
 
+    /// assemble() by the lean kernel of linear simplices, for requests it
+    /// covers (see uses_lean_kernel()).
+    void
+    assemble_lean(const Request &request, VectorType &residual);
+
+    /// Whether @p request is for the lean kernel: one is built for this
+    /// mesh and the request's loads are its (gravity, inertia; no body
+    /// force expression or traction).
+    bool
+    uses_lean_kernel(const Request &request) const;
+
+    /// Throws InvertedElementError naming the @p inverted cells (active
+    /// cell index, det F, centre), gathered from every process.
+    void
+    report_inversions(
+      const std::vector<std::tuple<unsigned int, double, Point<dim>>> &inverted)
+      const;
+
     /// For the mean dilatation formulation: the effective stresses and
     /// tangents of a cell and its rank-two coupling (mean_dilatation.h),
     /// into the assembly's scratch; marks the cell inverted if some det F
@@ -251,8 +278,10 @@ namespace tissuefem::solid
     const materials::MaterialSet<dim> &materials;
     boundary::BoundaryConditions<dim> &boundary_conditions;
     CellCache<dim>                     cache;
-    FibreField<dim>                    fibre_field;
-    AffineConstraints<double>          no_constraints;
+    /// The lean kernel, where it applies to the mesh (else null).
+    std::unique_ptr<LinearSimplexKernel<dim>> lean;
+    FibreField<dim>                           fibre_field;
+    AffineConstraints<double>                 no_constraints;
     /// Constraints with the Dirichlet increment (implicit_residual_lifting).
     AffineConstraints<double>                         lifting_constraints;
     MatrixType                                        jacobian_matrix;

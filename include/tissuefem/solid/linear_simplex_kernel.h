@@ -1,0 +1,163 @@
+#pragma once
+
+#include <deal.II/base/tensor.h>
+
+#include <tissuefem/materials/material_set.h>
+#include <tissuefem/solid/cell_cache.h>
+#include <tissuefem/solid/discretization.h>
+#include <tissuefem/solid/fibre_field.h>
+
+#include <utility>
+#include <vector>
+
+namespace tissuefem::solid
+{
+  /**
+   * The lean element kernel of linear triangles and tetrahedra in the
+   * displacement formulation, beside the general quadrature loop of
+   * Solid::assemble() (which stays the reference for every other element
+   * and for checking this one: tests/unit/lean_kernel.cc).
+   *
+   * On a P1 simplex F = I + sum_k u_k (x) g_k is constant, so the element
+   * force is f_k = V P(F) g_k and the stiffness K_(ka)(lb) = V A_ambn g_km
+   * g_ln (problem session eq 19) with V the volume: one stress (and
+   * tangent) evaluation per cell instead of one per quadrature point,
+   * unless the fibre direction varies within the cell, in which case the
+   * fibre material is evaluated at each quadrature point with its weight,
+   * as the general path does. The consistent mass of a P1 simplex is
+   * rho V (1 + delta_kl) / ((d + 1)(d + 2)) and the gravity load rho g V /
+   * (d + 1), in closed form.
+   *
+   * Per mesh, build() stores for each cell its shape gradients, volume,
+   * fibre, density and material, and the local indices of its dofs in the
+   * ghosted vectors; cells are ordered into batches of one material, so
+   * that the model is called once per batch (materials::Interface::
+   * stresses()) and no virtual call or allocation happens per cell.
+   * evaluate() computes every cell's element vector and matrix into
+   * per-cell storage, in parallel (the cells are independent); add_direct()
+   * then adds those of cells without constraints into the owned rows of the
+   * residual and the Trilinos matrix in parallel over rows, each row
+   * summing its cells in a fixed order: the result does not depend on the
+   * number of threads. Cells with constrained or non-owned dofs are left
+   * to the caller (AffineConstraints).
+   */
+  template <int dim>
+  class LinearSimplexKernel
+  {
+  public:
+    static constexpr unsigned int n_nodes = dim + 1;
+    static constexpr unsigned int n_dofs  = dim * (dim + 1);
+
+    /// Whether the kernel computes what the general path would: linear
+    /// simplices in 2D or 3D, displacement formulation, a quadrature rule
+    /// exact for the P1 mass matrix.
+    static bool
+    applies(const Discretization<dim>         &discretization,
+            const materials::MaterialSet<dim> &materials,
+            const CellCache<dim>              &cache);
+
+    /**
+     * Stores the per-cell data for the current mesh. @p ghost_index[c * n +
+     * i] is the index in the ghosted vectors of dof i (in local_index
+     * order of @p cache) of cached cell c; @p direct[c] whether the cell's
+     * element objects may be added in place and @p row[c * n + i] the
+     * owned row of its dof i.
+     */
+    void
+    build(const CellCache<dim>              &cache,
+          const FibreField<dim>             &fibres,
+          const materials::MaterialSet<dim> &materials,
+          const std::vector<int>            &ghost_index,
+          const std::vector<bool>           &direct,
+          const std::vector<int>            &row,
+          const unsigned int                 n_owned_rows);
+
+    /// What one evaluation computes (see Solid's Request).
+    struct Input
+    {
+      const double  *u = nullptr; ///< ghosted displacement, or null (zero)
+      const double  *w = nullptr; ///< ghosted inertia vector, or null
+      double         mass_jacobian_coefficient = 0;
+      Tensor<1, dim> gravity;
+      bool           internal = true;
+      bool           external = true;
+      bool           jacobian = false;
+      /// Cells to evaluate (by cache index), all if null.
+      const std::vector<bool> *cells = nullptr;
+    };
+
+    /**
+     * Element vectors (and matrices) of every cell, in the element's dof
+     * order; cells not in Input::cells get zeros. Returns the cells (cache
+     * index, det F) where det F <= 0 for a model that cannot represent it.
+     */
+    std::vector<std::pair<unsigned int, double>>
+    evaluate(const Input &input);
+
+    /// Adds the element vectors (and matrices) of direct cells into the
+    /// owned rows @p residual and @p row_values (Trilinos' row storage, at
+    /// the positions @p entry[(c * n + i) * n + j]).
+    void
+    add_direct(double                      *residual,
+               const std::vector<double *> &row_values,
+               const std::vector<int>      &entry,
+               const bool                   jacobian) const;
+
+    /// The element vector and matrix (row-major) of cached cell @p c.
+    const double *
+    cell_vector(const unsigned int c) const
+    {
+      return &vectors[c * n_dofs];
+    }
+    const double *
+    cell_matrix(const unsigned int c) const
+    {
+      return &matrices[c * n_dofs * n_dofs];
+    }
+
+  private:
+    /// Quadrature points per cell the kernel takes (a fibre that varies
+    /// over a cell is evaluated at each).
+    static constexpr unsigned int max_points_per_cell = 64;
+
+    /// Cells of one material, evaluated together.
+    struct Batch
+    {
+      unsigned int                     begin, end; ///< into order
+      const materials::Interface<dim> *material;
+      double                           density;
+    };
+
+    /// Evaluates the cells of one batch.
+    void
+    evaluate_batch(const Batch                                  &batch,
+                   const Input                                  &input,
+                   std::vector<std::pair<unsigned int, double>> &inverted);
+
+    materials::TangentMethod method;
+    bool                     project = false;
+    /// Cache indices in batch order.
+    std::vector<unsigned int> order;
+    std::vector<Batch>        batches;
+    /// Per cache index: shape gradients [c * n_nodes + k], volume, the
+    /// local ghosted index of each dof [c * n_dofs + i] (component-major
+    /// per node: node k, component a at k * dim + a).
+    std::vector<Tensor<1, dim>> gradients;
+    std::vector<double>         volume;
+    std::vector<int>            ghost;
+    /// Per cache index: the element's dof index of node k, component a.
+    std::vector<unsigned int> local_index;
+    /// Fibre points: for cell c, points [point_begin[c], point_begin[c +
+    /// 1]) with their fibre and weight (the volume if the fibre is uniform
+    /// over the cell, else one per quadrature point).
+    std::vector<unsigned int>   point_begin;
+    std::vector<Tensor<1, dim>> point_fibre;
+    std::vector<double>         point_weight;
+    /// Owned rows: positions c * n_dofs + i of direct cells' entries
+    /// landing there, [row_begin[r], row_begin[r + 1]).
+    std::vector<unsigned int> row_begin;
+    std::vector<unsigned int> row_positions;
+    std::vector<double>       vectors, matrices;
+    bool                      admits_inversion_everywhere = true;
+  };
+} // namespace tissuefem::solid

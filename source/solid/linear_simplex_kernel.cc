@@ -1,0 +1,382 @@
+#include <deal.II/base/parallel.h>
+
+#include <tissuefem/materials/tangent_projection.h>
+#include <tissuefem/solid/linear_simplex_kernel.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <mutex>
+
+namespace tissuefem::solid
+{
+  namespace
+  {
+    /// Cells per batch: enough to amortize the model's virtual call, few
+    /// enough that the batch's tangents stay in the L1/L2 cache.
+    constexpr unsigned int batch_size = 16;
+  } // namespace
+
+
+  template <int dim>
+  bool
+  LinearSimplexKernel<dim>::applies(
+    const Discretization<dim>         &discretization,
+    const materials::MaterialSet<dim> &materials,
+    const CellCache<dim>              &cache)
+  {
+    if (dim < 2 || !discretization.simplex || discretization.fe->degree != 1
+        || materials.edge_length_formulation()
+        || materials.mean_dilatation_formulation() || cache.n_scalar != n_nodes
+        || cache.n_compon != dim || cache.n_q > max_points_per_cell)
+      return false;
+    // The closed-form mass equals the general path's only where its
+    // quadrature integrates phi_k phi_l exactly: compare on the reference
+    // values (the same on every cell), per unit volume.
+    double weight = 0;
+    for (unsigned int q = 0; q < cache.n_q; ++q)
+      weight += discretization.cell_quadrature.weight(q);
+    for (unsigned int k = 0; k < n_nodes; ++k)
+      for (unsigned int l = 0; l < n_nodes; ++l)
+        {
+          double integral = 0;
+          for (unsigned int q = 0; q < cache.n_q; ++q)
+            integral += discretization.cell_quadrature.weight(q)
+                        * cache.values[q * n_nodes + k]
+                        * cache.values[q * n_nodes + l];
+          const double exact = (k == l ? 2. : 1.) / ((dim + 1) * (dim + 2));
+          if (std::abs(integral / weight - exact) > 1e-12)
+            return false;
+        }
+    return true;
+  }
+
+
+  template <int dim>
+  void
+  LinearSimplexKernel<dim>::build(const CellCache<dim>              &cache,
+                                  const FibreField<dim>             &fibres,
+                                  const materials::MaterialSet<dim> &materials,
+                                  const std::vector<int>  &ghost_index,
+                                  const std::vector<bool> &direct,
+                                  const std::vector<int>  &row,
+                                  const unsigned int       n_owned_rows)
+  {
+    method                     = materials.tangent_method();
+    project                    = materials.project_tangent();
+    const unsigned int n_cells = cache.cells().size();
+    gradients.resize(n_cells * n_nodes);
+    volume.resize(n_cells);
+    ghost.resize(n_cells * n_dofs);
+    local_index.assign(cache.local_index.begin(), cache.local_index.end());
+    point_begin.assign(1, 0);
+    point_fibre.clear();
+    point_weight.clear();
+    admits_inversion_everywhere = true;
+    for (unsigned int c = 0; c < n_cells; ++c)
+      {
+        const unsigned int cell_index = cache.cells()[c]->active_cell_index();
+        const double      *JxW        = cache.JxW(c);
+        volume[c]                     = 0;
+        for (unsigned int q = 0; q < cache.n_q; ++q)
+          volume[c] += JxW[q];
+        for (unsigned int k = 0; k < n_nodes; ++k)
+          gradients[c * n_nodes + k] = cache.gradient(c, 0, k);
+        for (unsigned int i = 0; i < n_dofs; ++i)
+          ghost[c * n_dofs + i] = ghost_index[c * n_dofs + local_index[i]];
+        const auto &material
+          = materials.material(cache.cells()[c]->material_id());
+        admits_inversion_everywhere
+          = admits_inversion_everywhere && material.admits_inversion();
+        // One point per cell unless the fibre direction varies over it.
+        bool uniform = true;
+        if (material.uses_fibres())
+          for (unsigned int q = 1; q < cache.n_q; ++q)
+            uniform
+              = uniform
+                && (fibres.at(cell_index, q) - fibres.at(cell_index, 0)).norm()
+                     == 0;
+        if (uniform)
+          {
+            point_fibre.push_back(fibres.at(cell_index, 0));
+            point_weight.push_back(volume[c]);
+          }
+        else
+          for (unsigned int q = 0; q < cache.n_q; ++q)
+            {
+              point_fibre.push_back(fibres.at(cell_index, q));
+              point_weight.push_back(JxW[q]);
+            }
+        point_begin.push_back(point_fibre.size());
+      }
+
+    // Batches of at most batch_size cells of one material, in cache order
+    // within a material.
+    order.resize(n_cells);
+    for (unsigned int c = 0; c < n_cells; ++c)
+      order[c] = c;
+    auto id
+      = [&](const unsigned int c) { return cache.cells()[c]->material_id(); };
+    std::stable_sort(order.begin(),
+                     order.end(),
+                     [&](const unsigned int a, const unsigned int b) {
+                       return id(a) < id(b);
+                     });
+    batches.clear();
+    for (unsigned int b = 0; b < n_cells;)
+      {
+        unsigned int e = b + 1;
+        while (e < n_cells && e - b < batch_size
+               && id(order[e]) == id(order[b]))
+          ++e;
+        batches.push_back({b,
+                           e,
+                           &materials.material(id(order[b])),
+                           materials.density(id(order[b]))});
+        b = e;
+      }
+
+    // Owned rows: which direct cells' entries land there, in cache order.
+    row_begin.assign(n_owned_rows + 1, 0);
+    // Positions are in the kernel's order (node k, component a at k * dim
+    // + a); row[] is in the element's.
+    for (unsigned int c = 0; c < n_cells; ++c)
+      if (direct[c])
+        for (unsigned int i = 0; i < n_dofs; ++i)
+          ++row_begin[row[c * n_dofs + local_index[i]] + 1];
+    for (unsigned int r = 0; r < n_owned_rows; ++r)
+      row_begin[r + 1] += row_begin[r];
+    row_positions.resize(row_begin.back());
+    std::vector<unsigned int> fill(row_begin.begin(), row_begin.end() - 1);
+    for (unsigned int c = 0; c < n_cells; ++c)
+      if (direct[c])
+        for (unsigned int i = 0; i < n_dofs; ++i)
+          row_positions[fill[row[c * n_dofs + local_index[i]]]++]
+            = c * n_dofs + i;
+    vectors.assign(n_cells * n_dofs, 0.);
+    matrices.clear();
+  }
+
+
+  template <int dim>
+  void
+  LinearSimplexKernel<dim>::evaluate_batch(
+    const Batch                                  &batch,
+    const Input                                  &input,
+    std::vector<std::pair<unsigned int, double>> &inverted)
+  {
+    // Work space of this thread, sized once (a batch has at most
+    // batch_size cells of at most n_q points each).
+    thread_local std::vector<Tensor<2, dim>> F, P;
+    thread_local std::vector<Tensor<1, dim>> a;
+    thread_local std::vector<Tensor<4, dim>> A;
+    const unsigned int max_points = batch_size * max_points_per_cell;
+    if (F.size() < max_points)
+      {
+        F.resize(max_points);
+        P.resize(max_points);
+        a.resize(max_points);
+        A.resize(max_points);
+      }
+    std::array<unsigned int, batch_size> first_point;
+    std::array<bool, batch_size>         skipped;
+    const materials::Interface<dim>     &material = *batch.material;
+    const bool elastic = input.internal && input.u != nullptr;
+
+    // Deformation gradients of the batch's cells, one per point.
+    unsigned int n_points = 0;
+    for (unsigned int b = batch.begin; b < batch.end; ++b)
+      {
+        const unsigned int c         = order[b];
+        first_point[b - batch.begin] = n_points;
+        skipped[b - batch.begin]     = true;
+        if (input.cells && !(*input.cells)[c])
+          continue;
+        Tensor<2, dim> Fc = unit_symmetric_tensor<dim>();
+        if (elastic)
+          for (unsigned int k = 0; k < n_nodes; ++k)
+            {
+              const Tensor<1, dim> &g = gradients[c * n_nodes + k];
+              const int            *G = &ghost[c * n_dofs + k * dim];
+              for (unsigned int i = 0; i < dim; ++i)
+                for (unsigned int j = 0; j < dim; ++j)
+                  Fc[i][j] += input.u[G[i]] * g[j];
+            }
+        if (elastic && !material.admits_inversion())
+          {
+            const double det = determinant(Fc);
+            if (det <= 0)
+              {
+                inverted.emplace_back(c, det);
+                continue;
+              }
+          }
+        skipped[b - batch.begin] = false;
+        for (unsigned int p = point_begin[c]; p < point_begin[c + 1]; ++p)
+          {
+            F[n_points] = Fc;
+            a[n_points] = point_fibre[p];
+            ++n_points;
+          }
+      }
+    if (elastic && n_points > 0)
+      {
+        if (input.jacobian)
+          {
+            material.stresses_and_tangents(
+              n_points, F.data(), a.data(), P.data(), A.data(), method);
+            if (project)
+              for (unsigned int p = 0; p < n_points; ++p)
+                materials::project_to_positive_definite(A[p]);
+          }
+        else
+          material.stresses(n_points, F.data(), a.data(), P.data());
+      }
+
+    const double rho  = batch.density;
+    const double mass = rho / ((dim + 1) * (dim + 2));
+    for (unsigned int b = batch.begin; b < batch.end; ++b)
+      {
+        const unsigned int c = order[b];
+        double            *r = &vectors[c * n_dofs];
+        double *K = input.jacobian ? &matrices[c * n_dofs * n_dofs] : nullptr;
+        std::fill(r, r + n_dofs, 0.);
+        if (K)
+          std::fill(K, K + n_dofs * n_dofs, 0.);
+        // Cells not asked for, and inverted ones (the caller throws).
+        if (skipped[b - batch.begin])
+          continue;
+        const Tensor<1, dim> *g = &gradients[c * n_nodes];
+        if (elastic)
+          {
+            // f_k = sum_points w P g_k; K_(ka)(lb) = sum w A_ambn g_km g_ln.
+            unsigned int p = first_point[b - batch.begin];
+            for (unsigned int s = point_begin[c]; s < point_begin[c + 1];
+                 ++s, ++p)
+              {
+                const double w = point_weight[s];
+                for (unsigned int k = 0; k < n_nodes; ++k)
+                  {
+                    const Tensor<1, dim> f = w * (P[p] * g[k]);
+                    for (unsigned int i = 0; i < dim; ++i)
+                      r[k * dim + i] += f[i];
+                  }
+                if (!K)
+                  continue;
+                for (unsigned int k = 0; k < n_nodes; ++k)
+                  {
+                    // B[a][b][n] = w A[a][m][b][n] g_k[m]
+                    Tensor<3, dim> B;
+                    for (unsigned int i = 0; i < dim; ++i)
+                      for (unsigned int m = 0; m < dim; ++m)
+                        B[i] += (w * g[k][m]) * A[p][i][m];
+                    for (unsigned int l = k; l < n_nodes; ++l)
+                      for (unsigned int i = 0; i < dim; ++i)
+                        for (unsigned int j = 0; j < dim; ++j)
+                          K[(k * dim + i) * n_dofs + l * dim + j]
+                            += B[i][j] * g[l];
+                  }
+              }
+          }
+        const double V = volume[c];
+        if (input.external)
+          for (unsigned int k = 0; k < n_nodes; ++k)
+            for (unsigned int i = 0; i < dim; ++i)
+              r[k * dim + i] -= rho * input.gravity[i] * V / (dim + 1);
+        if (input.w)
+          {
+            const int *G = &ghost[c * n_dofs];
+            for (unsigned int k = 0; k < n_nodes; ++k)
+              for (unsigned int l = 0; l < n_nodes; ++l)
+                for (unsigned int i = 0; i < dim; ++i)
+                  r[k * dim + i]
+                    += (k == l ? 2. : 1.) * mass * V * input.w[G[l * dim + i]];
+          }
+        if (K)
+          {
+            const double m = input.mass_jacobian_coefficient * mass * V;
+            for (unsigned int k = 0; k < n_nodes; ++k)
+              for (unsigned int l = k; l < n_nodes; ++l)
+                for (unsigned int i = 0; i < dim; ++i)
+                  K[(k * dim + i) * n_dofs + l * dim + i]
+                    += (k == l ? 2. : 1.) * m;
+            // The node blocks above the diagonal were computed; mirror them
+            // (K is symmetric: A_ambn = A_bnam).
+            for (unsigned int k = 0; k < n_nodes; ++k)
+              for (unsigned int l = 0; l < k; ++l)
+                for (unsigned int i = 0; i < dim; ++i)
+                  for (unsigned int j = 0; j < dim; ++j)
+                    K[(k * dim + i) * n_dofs + l * dim + j]
+                      = K[(l * dim + j) * n_dofs + k * dim + i];
+          }
+      }
+  }
+
+
+  template <int dim>
+  std::vector<std::pair<unsigned int, double>>
+  LinearSimplexKernel<dim>::evaluate(const Input &input)
+  {
+    if (input.jacobian)
+      matrices.resize(volume.size() * n_dofs * n_dofs);
+    std::vector<std::pair<unsigned int, double>> inverted;
+    std::mutex                                   lock;
+    parallel::apply_to_subranges(
+      0u,
+      static_cast<unsigned int>(batches.size()),
+      [&](const unsigned int begin, const unsigned int end) {
+        std::vector<std::pair<unsigned int, double>> found;
+        for (unsigned int b = begin; b < end; ++b)
+          evaluate_batch(batches[b], input, found);
+        if (!found.empty())
+          {
+            std::lock_guard<std::mutex> guard(lock);
+            inverted.insert(inverted.end(), found.begin(), found.end());
+          }
+      },
+      8);
+    std::sort(inverted.begin(), inverted.end());
+    return inverted;
+  }
+
+
+  template <int dim>
+  void
+  LinearSimplexKernel<dim>::add_direct(double                      *residual,
+                                       const std::vector<double *> &row_values,
+                                       const std::vector<int>      &entry,
+                                       const bool jacobian) const
+  {
+    const unsigned int n_rows = row_begin.size() - 1;
+    parallel::apply_to_subranges(
+      0u,
+      n_rows,
+      [&](const unsigned int begin, const unsigned int end) {
+        for (unsigned int r = begin; r < end; ++r)
+          {
+            double sum = 0;
+            for (unsigned int s = row_begin[r]; s < row_begin[r + 1]; ++s)
+              sum += vectors[row_positions[s]];
+            residual[r] += sum;
+            if (!jacobian)
+              continue;
+            double *values = row_values[r];
+            for (unsigned int s = row_begin[r]; s < row_begin[r + 1]; ++s)
+              {
+                const unsigned int position = row_positions[s];
+                const unsigned int c        = position / n_dofs;
+                const unsigned int i        = local_index[position % n_dofs];
+                const int         *e        = &entry[(c * n_dofs + i) * n_dofs];
+                const double      *K        = &matrices[position * n_dofs];
+                for (unsigned int j = 0; j < n_dofs; ++j)
+                  values[e[local_index[j]]] += K[j];
+              }
+          }
+      },
+      256);
+  }
+
+  template class LinearSimplexKernel<1>;
+  template class LinearSimplexKernel<2>;
+  template class LinearSimplexKernel<3>;
+} // namespace tissuefem::solid

@@ -1,0 +1,105 @@
+// Solid's assembly through the lean kernel of linear simplices
+// (linear_simplex_kernel.h): the kernel computes and adds the cells without
+// constraints; the others go through AffineConstraints here, as in the
+// general path of solid.cc.
+#include <tissuefem/solid/solid.h>
+
+namespace tissuefem::solid
+{
+  template <int dim>
+  bool
+  Solid<dim>::uses_lean_kernel(const Request &request) const
+  {
+    // Body forces given as expressions and tractions need quadrature
+    // points and faces: the general path integrates them.
+    return lean
+           && !(
+             request.external
+             && (body_force_present || !boundary_conditions.neumann.empty()));
+  }
+
+
+  template <int dim>
+  void
+  Solid<dim>::assemble_lean(const Request &request, VectorType &residual)
+  {
+    const unsigned int n = cache.n_dofs;
+    discretization.initialize_assembly_vector(residual);
+    if (request.jacobian)
+      jacobian_matrix = 0;
+
+    typename LinearSimplexKernel<dim>::Input input;
+    input.u = request.u && request.internal ? request.u->trilinos_vector()[0]
+                                            : nullptr;
+    input.w = request.inertia ? request.inertia->trilinos_vector()[0] : nullptr;
+    input.mass_jacobian_coefficient = request.mass_jacobian_coefficient;
+    input.gravity                   = boundary_conditions.gravity;
+    input.internal                  = request.internal;
+    input.external                  = request.external;
+    input.jacobian                  = request.jacobian;
+    input.cells                     = request.cells;
+    const auto inverted_cells       = lean->evaluate(input);
+
+    std::vector<bool> inverted(cache.cells().size(), false);
+    std::vector<std::tuple<unsigned int, double, Point<dim>>> report;
+    for (const auto &[c, det] : inverted_cells)
+      {
+        inverted[c] = true;
+        report.emplace_back(cache.cells()[c]->active_cell_index(),
+                            det,
+                            cache.cells()[c]->center());
+      }
+
+    lean->add_direct(residual.trilinos_vector()[0],
+                     access.row_values,
+                     access.entry,
+                     request.jacobian);
+
+    // Cells with constrained or non-owned dofs: element order, then the
+    // request's constraints.
+    const AffineConstraints<double>     &rows = *request.rows;
+    FullMatrix<double>                   matrix(n, n);
+    Vector<double>                       rhs(n);
+    std::vector<types::global_dof_index> dofs(n);
+    const auto                          &index = cache.local_index;
+    for (unsigned int c = 0; c < cache.cells().size(); ++c)
+      {
+        if (access.direct[c] || inverted[c]
+            || (request.cells && !(*request.cells)[c]))
+          continue;
+        const double *vector = lean->cell_vector(c);
+        for (unsigned int i = 0; i < n; ++i)
+          rhs[index[i]] = vector[i];
+        std::copy(cache.dofs(c), cache.dofs(c) + n, dofs.begin());
+        if (request.jacobian)
+          {
+            const double *K = lean->cell_matrix(c);
+            for (unsigned int i = 0; i < n; ++i)
+              for (unsigned int j = 0; j < n; ++j)
+                matrix(index[i], index[j]) = K[i * n + j];
+            rows.distribute_local_to_global(matrix,
+                                            rhs,
+                                            dofs,
+                                            jacobian_matrix,
+                                            residual,
+                                            request.inhomogeneous);
+          }
+        else
+          rows.distribute_local_to_global(rhs, dofs, residual);
+      }
+
+    residual.compress(VectorOperation::add);
+    if (request.jacobian)
+      jacobian_matrix.compress(VectorOperation::add);
+    report_inversions(report);
+  }
+
+
+#define TISSUEFEM_INSTANTIATE(dim)                                   \
+  template bool Solid<dim>::uses_lean_kernel(const Request &) const; \
+  template void Solid<dim>::assemble_lean(const Request &, VectorType &);
+  TISSUEFEM_INSTANTIATE(1)
+  TISSUEFEM_INSTANTIATE(2)
+  TISSUEFEM_INSTANTIATE(3)
+#undef TISSUEFEM_INSTANTIATE
+} // namespace tissuefem::solid

@@ -1,0 +1,189 @@
+#include <tissuefem/base/input_error.h>
+#include <tissuefem/base/timing.h>
+#include <tissuefem/time/interface.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace tissuefem::time
+{
+  /**
+   * Linearly implicit (semi-implicit) Euler, Baraff and Witkin's "Large
+   * steps in cloth simulation" (1998) and SOFA's EulerImplicitSolver:
+   * backward Euler (problem session eqs 3-4) with the internal force
+   * linearized about the start of the step,
+   *
+   *   f_int(u_{n+1}) ~ f_int(u_n) + K(u_n) (u_{n+1} - u_n),
+   *
+   * so that each step is one linear solve
+   *
+   *   (M/h^2 + K(u_n)) du = M v_n / h - f_int(u_n) + f_ext(t_{n+1}),
+   *
+   * u_{n+1} = u_n + du, v_{n+1} = du/h, a_{n+1} = (v_{n+1} - v_n)/h. This is
+   * exactly the first Newton iteration of the backward Euler step started
+   * from u_n, with the change of the prescribed displacements taken as
+   * inhomogeneous constraints of du (Operators::implicit_residual_lifting).
+   * The linearization error is O(|du|^2) = O(h^2) per step, so the method
+   * stays first-order accurate, keeps backward Euler's stability for
+   * linear problems, and costs one Jacobian, one factorization and one
+   * solve per step, whatever the state: the cost of a step is known in
+   * advance, which is what a real-time loop needs. Its answer differs from
+   * converged backward Euler by the linearization error, which the studies
+   * chart (parameters/studies/teran_2d.prm, muscle_choice.prm).
+   *
+   * A step whose system cannot be formed or solved (an element inverted at
+   * u_n for a model that cannot represent it, a singular Jacobian), or that
+   * lands in a state whose stored energy is not finite (an inverted
+   * element), is retried with half the step, at most 'Maximum step
+   * halvings' times; the step then grows back by factors of two. The
+   * statistics' residual column is 0: the residual at u_{n+1} is not
+   * evaluated (that would cost a second assembly per step).
+   */
+  class LinearlyImplicitEuler : public Interface
+  {
+  public:
+    explicit LinearlyImplicitEuler(const ParameterHandler &)
+    {
+    }
+
+    static void
+    declare_parameters(ParameterHandler &)
+    {
+    }
+
+    void
+    initialize(Context &c, State &state) override
+    {
+      context   = &c;
+      step_size = c.time.time_step;
+      c.solid.initialize_vector(state.a);
+    }
+
+    StepReport
+    advance(State &state, const double end_time) override
+    {
+      auto              &linear_solver = context->linear_solver;
+      const unsigned int linear_before = linear_solver.statistics().iterations;
+      StepReport         report;
+      double             h = std::min(step_size, end_time - state.time);
+      State              next;
+      bool               reduced = false;
+      for (unsigned int halvings = 0;; ++halvings)
+        {
+          const std::string failure = attempt(state, h, next, report);
+          if (failure.empty())
+            break;
+          ++report.rejected_attempts;
+          reduced = true;
+          std::ostringstream message;
+          message << "linearly implicit Euler failed at t = " << state.time + h
+                  << " with dt = " << h << ": " << failure;
+          if (halvings == context->time.max_step_halvings)
+            throw SolverError(message.str() + "; gave up after "
+                              + std::to_string(halvings)
+                              + " step halvings ('Time integration/Maximum "
+                                "step halvings')");
+          parallel_tools::screen()
+            << "  " << message.str() << "; retrying with dt = " << h / 2
+            << std::endl;
+          h /= 2;
+        }
+      report.linear_iterations
+        = linear_solver.statistics().iterations - linear_before;
+      state.time = next.time;
+      state.u.swap(next.u);
+      state.v.swap(next.v);
+      state.a.swap(next.a);
+      report.dt = h;
+      // A step shortened to land on the end time says nothing about the
+      // step size; after a failure, grow back by a factor of two per step.
+      step_size = std::min(context->time.time_step,
+                           reduced ? 2 * h : std::max(step_size, 2 * h));
+      return report;
+    }
+
+    bool
+    checkpointable() const override
+    {
+      return true;
+    }
+
+    std::vector<double>
+    checkpoint_scalars() const override
+    {
+      return {step_size};
+    }
+
+    void
+    restore_scalars(const std::vector<double> &scalars) override
+    {
+      step_size = scalars.at(0);
+    }
+
+  private:
+    /// One linear solve from @p state over @p h into @p next; empty on
+    /// success, else why it failed.
+    std::string
+    attempt(const State &state, const double h, State &next, StepReport &report)
+    {
+      auto        &solid = context->solid;
+      const double c     = 1. / (h * h);
+      const double t_new = state.time + h;
+      u_tilde            = state.u;
+      u_tilde.add(h, state.v);
+      next.u = state.u;
+      residual.reinit(state.u);
+      update.reinit(state.u);
+      try
+        {
+          auto start = std::chrono::steady_clock::now();
+          // At u_n with its old prescribed values: the lifted residual
+          // and the Jacobian M/h^2 + K(u_n).
+          solid.implicit_residual_lifting(next.u, u_tilde, c, t_new, residual);
+          report.assembly_seconds += seconds_since(start);
+          ++report.jacobian_evaluations;
+          residual *= -1.;
+          start = std::chrono::steady_clock::now();
+          context->linear_solver.solve(solid.jacobian(), update, residual);
+          report.solve_seconds += seconds_since(start);
+          ++report.newton_iterations;
+        }
+      catch (const SolverError &e)
+        {
+          return e.what();
+        }
+      next.u += update;
+      // The prescribed values (already reached up to round-off) and
+      // hanging nodes set exactly.
+      solid.apply_dirichlet_values(t_new, next.u);
+      if (!std::isfinite(next.u.l2_norm()))
+        return "the update is not finite";
+      if (!std::isfinite(solid.stored_energy(next.u)))
+        return "the step inverts an element (stored energy not finite)";
+      next.time = t_new;
+      next.v    = next.u;
+      next.v -= state.u;
+      next.v /= h;
+      next.a = next.u;
+      next.a -= u_tilde;
+      next.a *= c;
+      return {};
+    }
+
+    Context   *context   = nullptr;
+    double     step_size = 0;
+    VectorType u_tilde, residual, update;
+  };
+
+  TISSUEFEM_REGISTER_INTEGRATOR(
+    LinearlyImplicitEuler,
+    "linearly implicit Euler",
+    "backward Euler with the internal force linearized at the start of each "
+    "step (Baraff and Witkin 1998; SOFA's EulerImplicitSolver): one "
+    "Jacobian and one linear solve per step, first-order accurate, stable "
+    "at large steps; cheaper than backward Euler by its Newton iterations, "
+    "less accurate by the linearization error.")
+} // namespace tissuefem::time
