@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <mutex>
 
 namespace tissuefem::solid
@@ -337,6 +338,90 @@ namespace tissuefem::solid
       8);
     std::sort(inverted.begin(), inverted.end());
     return inverted;
+  }
+
+
+  template <int dim>
+  double
+  LinearSimplexKernel<dim>::stored_energy(const double *u) const
+  {
+    std::vector<double> energies(batches.size());
+    parallel::apply_to_subranges(
+      0u,
+      static_cast<unsigned int>(batches.size()),
+      [&](const unsigned int begin, const unsigned int end) {
+        for (unsigned int b = begin; b < end; ++b)
+          {
+            const materials::Interface<dim> &material = *batches[b].material;
+            double                           energy   = 0;
+            for (unsigned int o = batches[b].begin; o < batches[b].end; ++o)
+              {
+                const unsigned int c = order[o];
+                Tensor<2, dim>     F = unit_symmetric_tensor<dim>();
+                for (unsigned int k = 0; k < n_nodes; ++k)
+                  {
+                    const Tensor<1, dim> &g = gradients[c * n_nodes + k];
+                    const int            *G = &ghost[c * n_dofs + k * dim];
+                    for (unsigned int i = 0; i < dim; ++i)
+                      for (unsigned int j = 0; j < dim; ++j)
+                        F[i][j] += u[G[i]] * g[j];
+                  }
+                if (!material.admits_inversion() && !(determinant(F) > 0))
+                  {
+                    energy = std::numeric_limits<double>::infinity();
+                    break;
+                  }
+                for (unsigned int p = point_begin[c]; p < point_begin[c + 1];
+                     ++p)
+                  energy += material.energy_density(F, point_fibre[p])
+                            * point_weight[p];
+              }
+            energies[b] = energy;
+          }
+      },
+      8);
+    double sum = 0;
+    for (const double energy : energies)
+      sum += energy;
+    return sum;
+  }
+
+
+  template <int dim>
+  double
+  LinearSimplexKernel<dim>::kinetic_energy(const double *v) const
+  {
+    std::vector<double> energies(batches.size());
+    parallel::apply_to_subranges(
+      0u,
+      static_cast<unsigned int>(batches.size()),
+      [&](const unsigned int begin, const unsigned int end) {
+        for (unsigned int b = begin; b < end; ++b)
+          {
+            double energy = 0;
+            for (unsigned int o = batches[b].begin; o < batches[b].end; ++o)
+              {
+                const unsigned int c = order[o];
+                Tensor<1, dim>     sum;
+                double             squares = 0;
+                for (unsigned int k = 0; k < n_nodes; ++k)
+                  for (unsigned int i = 0; i < dim; ++i)
+                    {
+                      const double value = v[ghost[c * n_dofs + k * dim + i]];
+                      sum[i] += value;
+                      squares += value * value;
+                    }
+                energy += volume[c] * (squares + sum.norm_square());
+              }
+            energies[b]
+              = 0.5 * batches[b].density * energy / ((dim + 1) * (dim + 2));
+          }
+      },
+      8);
+    double sum = 0;
+    for (const double energy : energies)
+      sum += energy;
+    return sum;
   }
 
 

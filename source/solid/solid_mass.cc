@@ -130,9 +130,12 @@ namespace tissuefem::solid
     VectorType ghosted;
     discretization.initialize_vector(ghosted, true);
     make_ghosted(u, ghosted);
-    const unsigned int          n_q = cache.n_q, n_scalar = cache.n_scalar;
-    const unsigned int          n      = cache.n_dofs;
-    const double               *values = ghosted.trilinos_vector()[0];
+    const unsigned int n_q = cache.n_q, n_scalar = cache.n_scalar;
+    const unsigned int n      = cache.n_dofs;
+    const double      *values = ghosted.trilinos_vector()[0];
+    if (lean)
+      return Utilities::MPI::sum(lean->stored_energy(values),
+                                 parallel_tools::communicator());
     double                      energy = 0;
     std::vector<Tensor<2, dim>> F(n_q);
     for (unsigned int c = 0; c < cache.cells().size(); ++c)
@@ -191,7 +194,10 @@ namespace tissuefem::solid
     const unsigned int n_q = cache.n_q, n_scalar = cache.n_scalar;
     const unsigned int n      = cache.n_dofs;
     const double      *values = ghosted_w.trilinos_vector()[0];
-    double             energy = 0;
+    if (lean)
+      return Utilities::MPI::sum(lean->kinetic_energy(values),
+                                 parallel_tools::communicator());
+    double energy = 0;
     for (unsigned int c = 0; c < cache.cells().size(); ++c)
       {
         const double rho = materials.density(cache.cells()[c]->material_id());

@@ -3,8 +3,9 @@
 // registered material on triangles and tetrahedra: the implicit-step
 // residual (internal force, consistent-mass inertia, gravity) and its
 // Jacobian (tangent plus mass), and the internal force alone, at a random
-// displacement, must agree to round-off (relative differences below 1e-12
-// in the l2 norm of the residual and the Frobenius norm of the matrix).
+// displacement, and the stored and kinetic energies, must agree to
+// round-off (relative differences below 1e-12 in the l2 norm of the
+// residual, the Frobenius norm of the matrix and the energies).
 // The mesh has a clamped face (cells with constrained dofs take the
 // AffineConstraints path) and, for fibre models, a fibre direction that
 // varies within cells (evaluated per quadrature point) and one that is
@@ -62,6 +63,7 @@ namespace
   {
     Vector<double>     residual, force;
     FullMatrix<double> jacobian;
+    double             stored = 0, kinetic = 0;
     bool               lean   = false;
     bool               fibres = false;
   };
@@ -95,8 +97,10 @@ namespace
     result.jacobian.reinit(n, n);
     for (const auto &entry : solid.jacobian())
       result.jacobian(entry.row(), entry.column()) = entry.value();
-    result.lean   = solid.lean_kernel_active();
-    result.fibres = solid.get_materials().any_uses_fibres();
+    result.stored  = solid.stored_energy(u);
+    result.kinetic = solid.kinetic_energy(u_tilde);
+    result.lean    = solid.lean_kernel_active();
+    result.fibres  = solid.get_materials().any_uses_fibres();
     return result;
   }
 
@@ -130,6 +134,15 @@ namespace
                                    / general.jacobian.frobenius_norm(),
                                  1e-12,
                                  name + ": Jacobian, relative difference");
+    tissuefem_tests::check_small((lean.stored - general.stored)
+                                   / general.stored,
+                                 1e-12,
+                                 name + ": stored energy, relative difference");
+    tissuefem_tests::check_small((lean.kinetic - general.kinetic)
+                                   / general.kinetic,
+                                 1e-12,
+                                 name
+                                   + ": kinetic energy, relative difference");
     return general.fibres;
   }
 

@@ -94,6 +94,19 @@ namespace tissuefem::solid
     std::vector<std::pair<unsigned int, double>>
     evaluate(const Input &input);
 
+    /// int Psi dV over this process's cells for the ghosted displacement
+    /// @p u, one energy evaluation per cell (per point where the fibre
+    /// varies), in parallel, summed in cache order; +infinity where a cell
+    /// is inverted for a model that cannot represent it.
+    double
+    stored_energy(const double *u) const;
+
+    /// 1/2 v^T M v over this process's cells for the ghosted velocity @p v,
+    /// with the closed-form P1 mass: per cell rho V / ((d + 1)(d + 2)) / 2
+    /// (sum_k |v_k|^2 + |sum_k v_k|^2).
+    double
+    kinetic_energy(const double *v) const;
+
     /// Adds the element vectors (and matrices) of direct cells into the
     /// owned rows @p residual and @p row_values (Trilinos' row storage, at
     /// the positions @p entry[(c * n + i) * n + j]).
