@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <mutex>
 
@@ -193,16 +194,8 @@ namespace tissuefem::solid
         skipped[b - batch.begin]     = true;
         if (input.cells && !(*input.cells)[c])
           continue;
-        Tensor<2, dim> Fc = unit_symmetric_tensor<dim>();
-        if (elastic)
-          for (unsigned int k = 0; k < n_nodes; ++k)
-            {
-              const Tensor<1, dim> &g = gradients[c * n_nodes + k];
-              const int            *G = &ghost[c * n_dofs + k * dim];
-              for (unsigned int i = 0; i < dim; ++i)
-                for (unsigned int j = 0; j < dim; ++j)
-                  Fc[i][j] += input.u[G[i]] * g[j];
-            }
+        const Tensor<2, dim> Fc = elastic ? deformation_gradient(c, input.u)
+                                          : unit_symmetric_tensor<dim>();
         if (elastic && !material.admits_inversion())
           {
             const double det = determinant(Fc);
@@ -342,48 +335,62 @@ namespace tissuefem::solid
 
 
   template <int dim>
-  double
-  LinearSimplexKernel<dim>::stored_energy(const double *u) const
+  Tensor<2, dim>
+  LinearSimplexKernel<dim>::deformation_gradient(const unsigned int c,
+                                                 const double      *u) const
   {
-    std::vector<double> energies(batches.size());
+    Tensor<2, dim> F = unit_symmetric_tensor<dim>();
+    for (unsigned int k = 0; k < n_nodes; ++k)
+      {
+        const Tensor<1, dim> &g = gradients[c * n_nodes + k];
+        const int            *G = &ghost[c * n_dofs + k * dim];
+        for (unsigned int i = 0; i < dim; ++i)
+          for (unsigned int j = 0; j < dim; ++j)
+            F[i][j] += u[G[i]] * g[j];
+      }
+    return F;
+  }
+
+
+  template <int dim>
+  double
+  LinearSimplexKernel<dim>::sum_over_batches(
+    const std::function<double(const Batch &)> &batch_sum) const
+  {
+    std::vector<double> sums(batches.size());
     parallel::apply_to_subranges(
       0u,
       static_cast<unsigned int>(batches.size()),
       [&](const unsigned int begin, const unsigned int end) {
         for (unsigned int b = begin; b < end; ++b)
-          {
-            const materials::Interface<dim> &material = *batches[b].material;
-            double                           energy   = 0;
-            for (unsigned int o = batches[b].begin; o < batches[b].end; ++o)
-              {
-                const unsigned int c = order[o];
-                Tensor<2, dim>     F = unit_symmetric_tensor<dim>();
-                for (unsigned int k = 0; k < n_nodes; ++k)
-                  {
-                    const Tensor<1, dim> &g = gradients[c * n_nodes + k];
-                    const int            *G = &ghost[c * n_dofs + k * dim];
-                    for (unsigned int i = 0; i < dim; ++i)
-                      for (unsigned int j = 0; j < dim; ++j)
-                        F[i][j] += u[G[i]] * g[j];
-                  }
-                if (!material.admits_inversion() && !(determinant(F) > 0))
-                  {
-                    energy = std::numeric_limits<double>::infinity();
-                    break;
-                  }
-                for (unsigned int p = point_begin[c]; p < point_begin[c + 1];
-                     ++p)
-                  energy += material.energy_density(F, point_fibre[p])
-                            * point_weight[p];
-              }
-            energies[b] = energy;
-          }
+          sums[b] = batch_sum(batches[b]);
       },
       8);
     double sum = 0;
-    for (const double energy : energies)
-      sum += energy;
+    for (const double value : sums)
+      sum += value;
     return sum;
+  }
+
+
+  template <int dim>
+  double
+  LinearSimplexKernel<dim>::stored_energy(const double *u) const
+  {
+    return sum_over_batches([&](const Batch &batch) {
+      double energy = 0;
+      for (unsigned int o = batch.begin; o < batch.end; ++o)
+        {
+          const unsigned int   c = order[o];
+          const Tensor<2, dim> F = deformation_gradient(c, u);
+          if (!batch.material->admits_inversion() && !(determinant(F) > 0))
+            return std::numeric_limits<double>::infinity();
+          for (unsigned int p = point_begin[c]; p < point_begin[c + 1]; ++p)
+            energy += batch.material->energy_density(F, point_fibre[p])
+                      * point_weight[p];
+        }
+      return energy;
+    });
   }
 
 
@@ -391,37 +398,24 @@ namespace tissuefem::solid
   double
   LinearSimplexKernel<dim>::kinetic_energy(const double *v) const
   {
-    std::vector<double> energies(batches.size());
-    parallel::apply_to_subranges(
-      0u,
-      static_cast<unsigned int>(batches.size()),
-      [&](const unsigned int begin, const unsigned int end) {
-        for (unsigned int b = begin; b < end; ++b)
-          {
-            double energy = 0;
-            for (unsigned int o = batches[b].begin; o < batches[b].end; ++o)
+    return sum_over_batches([&](const Batch &batch) {
+      double energy = 0;
+      for (unsigned int o = batch.begin; o < batch.end; ++o)
+        {
+          const unsigned int c = order[o];
+          Tensor<1, dim>     sum;
+          double             squares = 0;
+          for (unsigned int k = 0; k < n_nodes; ++k)
+            for (unsigned int i = 0; i < dim; ++i)
               {
-                const unsigned int c = order[o];
-                Tensor<1, dim>     sum;
-                double             squares = 0;
-                for (unsigned int k = 0; k < n_nodes; ++k)
-                  for (unsigned int i = 0; i < dim; ++i)
-                    {
-                      const double value = v[ghost[c * n_dofs + k * dim + i]];
-                      sum[i] += value;
-                      squares += value * value;
-                    }
-                energy += volume[c] * (squares + sum.norm_square());
+                const double value = v[ghost[c * n_dofs + k * dim + i]];
+                sum[i] += value;
+                squares += value * value;
               }
-            energies[b]
-              = 0.5 * batches[b].density * energy / ((dim + 1) * (dim + 2));
-          }
-      },
-      8);
-    double sum = 0;
-    for (const double energy : energies)
-      sum += energy;
-    return sum;
+          energy += volume[c] * (squares + sum.norm_square());
+        }
+      return 0.5 * batch.density * energy / ((dim + 1) * (dim + 2));
+    });
   }
 
 

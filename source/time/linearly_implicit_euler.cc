@@ -1,6 +1,6 @@
 #include <tissuefem/base/input_error.h>
 #include <tissuefem/base/timing.h>
-#include <tissuefem/time/interface.h>
+#include <tissuefem/time/implicit_one_step.h>
 
 #include <algorithm>
 #include <chrono>
@@ -38,11 +38,12 @@ namespace tissuefem::time
    * u_n for a model that cannot represent it, a singular Jacobian), or that
    * lands in a state whose stored energy is not finite (an inverted
    * element), is retried with half the step, at most 'Maximum step
-   * halvings' times; the step then grows back by factors of two. The
+   * halvings' times, and the step grows back as for backward Euler
+   * (ImplicitOneStep::advance()). The
    * statistics' residual column is 0: the residual at u_{n+1} is not
    * evaluated (that would cost a second assembly per step).
    */
-  class LinearlyImplicitEuler : public Interface
+  class LinearlyImplicitEuler : public ImplicitOneStep
   {
   public:
     explicit LinearlyImplicitEuler(const ParameterHandler &)
@@ -54,87 +55,51 @@ namespace tissuefem::time
     {
     }
 
+  protected:
+    double
+    mass_coefficient(const double h) const override
+    {
+      return 1. / (h * h);
+    }
+
+    /// u_tilde = u_n + h v_n; the linearization point is u_n.
     void
-    initialize(Context &c, State &state) override
+    predict(const State &old_state,
+            const double h,
+            VectorType  &u_tilde,
+            VectorType  &initial_guess) const override
     {
-      context   = &c;
-      step_size = c.time.time_step;
-      c.solid.initialize_vector(state.a);
-    }
-
-    StepReport
-    advance(State &state, const double end_time) override
-    {
-      auto              &linear_solver = context->linear_solver;
-      const unsigned int linear_before = linear_solver.statistics().iterations;
-      StepReport         report;
-      double             h = std::min(step_size, end_time - state.time);
-      State              next;
-      bool               reduced = false;
-      for (unsigned int halvings = 0;; ++halvings)
-        {
-          const std::string failure = attempt(state, h, next, report);
-          if (failure.empty())
-            break;
-          ++report.rejected_attempts;
-          reduced = true;
-          std::ostringstream message;
-          message << "linearly implicit Euler failed at t = " << state.time + h
-                  << " with dt = " << h << ": " << failure;
-          if (halvings == context->time.max_step_halvings)
-            throw SolverError(message.str() + "; gave up after "
-                              + std::to_string(halvings)
-                              + " step halvings ('Time integration/Maximum "
-                                "step halvings')");
-          parallel_tools::screen()
-            << "  " << message.str() << "; retrying with dt = " << h / 2
-            << std::endl;
-          h /= 2;
-        }
-      report.linear_iterations
-        = linear_solver.statistics().iterations - linear_before;
-      state.time = next.time;
-      state.u.swap(next.u);
-      state.v.swap(next.v);
-      state.a.swap(next.a);
-      report.dt = h;
-      // A step shortened to land on the end time says nothing about the
-      // step size; after a failure, grow back by a factor of two per step.
-      step_size = std::min(context->time.time_step,
-                           reduced ? 2 * h : std::max(step_size, 2 * h));
-      return report;
-    }
-
-    bool
-    checkpointable() const override
-    {
-      return true;
-    }
-
-    std::vector<double>
-    checkpoint_scalars() const override
-    {
-      return {step_size};
+      u_tilde = old_state.u;
+      u_tilde.add(h, old_state.v);
+      initial_guess = old_state.u;
     }
 
     void
-    restore_scalars(const std::vector<double> &scalars) override
+    finish(const State      &old_state,
+           const VectorType &u_tilde,
+           const double      h,
+           State            &new_state) const override
     {
-      step_size = scalars.at(0);
+      new_state.v = new_state.u;
+      new_state.v -= old_state.u;
+      new_state.v /= h;
+      new_state.a = new_state.u;
+      new_state.a -= u_tilde;
+      new_state.a *= mass_coefficient(h);
     }
 
-  private:
     /// One linear solve from @p state over @p h into @p next; empty on
-    /// success, else why it failed.
+    /// success, else why it failed (ImplicitOneStep::advance() then halves
+    /// the step).
     std::string
-    attempt(const State &state, const double h, State &next, StepReport &report)
+    attempt(const State &state,
+            const double h,
+            State       &next,
+            StepReport  &report) override
     {
       auto        &solid = context->solid;
-      const double c     = 1. / (h * h);
       const double t_new = state.time + h;
-      u_tilde            = state.u;
-      u_tilde.add(h, state.v);
-      next.u = state.u;
+      predict(state, h, u_tilde, next.u);
       residual.reinit(state.u);
       update.reinit(state.u);
       try
@@ -142,7 +107,8 @@ namespace tissuefem::time
           auto start = std::chrono::steady_clock::now();
           // At u_n with its old prescribed values: the lifted residual
           // and the Jacobian M/h^2 + K(u_n).
-          solid.implicit_residual_lifting(next.u, u_tilde, c, t_new, residual);
+          solid.implicit_residual_lifting(
+            next.u, u_tilde, mass_coefficient(h), t_new, residual);
           report.assembly_seconds += seconds_since(start);
           ++report.jacobian_evaluations;
           residual *= -1.;
@@ -164,17 +130,11 @@ namespace tissuefem::time
       if (!std::isfinite(solid.stored_energy(next.u)))
         return "the step inverts an element (stored energy not finite)";
       next.time = t_new;
-      next.v    = next.u;
-      next.v -= state.u;
-      next.v /= h;
-      next.a = next.u;
-      next.a -= u_tilde;
-      next.a *= c;
+      finish(state, u_tilde, h, next);
       return {};
     }
 
-    Context   *context   = nullptr;
-    double     step_size = 0;
+  private:
     VectorType u_tilde, residual, update;
   };
 

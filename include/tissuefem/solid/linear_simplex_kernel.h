@@ -7,6 +7,7 @@
 #include <tissuefem/solid/discretization.h>
 #include <tissuefem/solid/fibre_field.h>
 
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -140,6 +141,16 @@ namespace tissuefem::solid
       const materials::Interface<dim> *material;
       double                           density;
     };
+
+    /// F = I + sum_k u_k (x) g_k of cached cell @p c, ghosted @p u.
+    Tensor<2, dim>
+    deformation_gradient(const unsigned int c, const double *u) const;
+
+    /// The sum over batches of @p batch_sum, evaluated in parallel and
+    /// added in batch order (the same with any number of threads).
+    double
+    sum_over_batches(
+      const std::function<double(const Batch &)> &batch_sum) const;
 
     /// Evaluates the cells of one batch.
     void

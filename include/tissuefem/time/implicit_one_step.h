@@ -80,8 +80,11 @@ namespace tissuefem::time
      * boundary lifting, Newton. On success @p next holds u, v, a at t + h
      * (constrained entries set) and the result is empty; otherwise it is
      * Newton's reason for failing. Iterations and times go into @p report.
+     * Methods that solve the step's equations otherwise (linearly implicit
+     * Euler) override it and keep the step halving and control of
+     * advance().
      */
-    std::string
+    virtual std::string
     attempt(const State &state,
             const double h,
             State       &next,
