@@ -42,7 +42,12 @@ namespace tissuefem::solvers
                       "1e-10",
                       Patterns::Double(0, 1),
                       "For 'cg amg': stop when |b - A x| <= tolerance |b| "
-                      "(l2 norms).");
+                      "(l2 norms). Newton's iterations in quasistatic and "
+                      "backward Euler steps ask for min(0.1, 0.5 |R_k| / "
+                      "|R_0|) instead where that is looser (Eisenstat and "
+                      "Walker's inexact Newton: loose solves far from the "
+                      "solution, tight ones near it); Newton's own "
+                      "tolerances decide the accuracy.");
     prm.declare_entry("Maximum iterations",
                       "1000",
                       Patterns::Integer(1),
@@ -205,7 +210,8 @@ namespace tissuefem::solvers
   LinearSolver::solve(const MatrixType &A,
                       VectorType       &x,
                       const VectorType &b,
-                      const bool        refactorize)
+                      const bool        refactorize,
+                      const double      relative_tolerance)
   {
     auto &impl = *implementation;
     auto &M    = const_cast<Epetra_CrsMatrix &>(A.trilinos_matrix());
@@ -341,7 +347,8 @@ namespace tissuefem::solvers
             };
             auto cg_solve = [&]() {
               SolverControl        control(parameters.max_iterations,
-                                    parameters.relative_tolerance
+                                    std::max(parameters.relative_tolerance,
+                                             relative_tolerance)
                                       * b.l2_norm());
               SolverCG<VectorType> cg(control);
               x = 0;

@@ -1,8 +1,8 @@
 #include <deal.II/base/utilities.h>
 
 #include <tissuefem/base/input_error.h>
-#include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/base/parallel.h>
+#include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/base/timing.h>
 #include <tissuefem/tool/grasp_tool.h>
 
@@ -330,6 +330,7 @@ namespace tissuefem::tool
       link = std::make_unique<LiveLink>(parameters.live_port,
                                         parameters.live_timeout,
                                         dim,
+                                        1. / parameters.haptic_rate,
                                         directory + "/live_port");
     if (!parallel_tools::is_root())
       return;
@@ -419,6 +420,26 @@ namespace tissuefem::tool
     last_time           = state.time;
     last_force          = force;
     last_position       = position;
+    if (link)
+      {
+        // What the communication thread answers with until the next step
+        // (as extrapolated_force()).
+        LiveLink::ForceModel model;
+        model.valid            = true;
+        model.holding          = holding;
+        model.time             = state.time;
+        const bool by_position = parameters.extrapolation != "time";
+        for (unsigned int i = 0; i < dim; ++i)
+          {
+            model.force.push_back(force[i]);
+            model.position.push_back(position[i]);
+            model.rate.push_back(!by_position && have_rate ? rate[i] : 0.);
+            for (unsigned int j = 0; j < dim; ++j)
+              model.stiffness.push_back(by_position ? stiffness[i][j] : 0.);
+          }
+        link->set_model(model);
+        link->set_stepping(false);
+      }
     if (force_file.is_open())
       {
         force_file << state.time << ',' << (holding ? 1 : 0);
@@ -461,27 +482,19 @@ namespace tissuefem::tool
       {
         if (link->ended())
           return false;
+        // The link's thread has answered them already; out-of-order
+        // positions are answered but not followed.
         for (const auto &sample : link->receive())
-          {
-            // Out-of-order positions are answered but not followed.
-            if (table.empty() || sample.time > table.back()[0])
-              {
-                std::vector<double> row{sample.time};
-                row.insert(row.end(),
-                           sample.position.begin(),
-                           sample.position.end());
-                table.push_back(row);
-              }
-            const auto           start = std::chrono::steady_clock::now();
-            const Tensor<1, dim> force = extrapolated_force(sample.time);
-            std::vector<double>  values(dim);
-            for (unsigned int d = 0; d < dim; ++d)
-              values[d] = force[d];
-            link->send(sample.time, values);
-            if (seconds_since(start) <= parameters.haptic_budget)
-              ++live_within_budget;
-          }
+          if (table.empty() || sample.time > table.back()[0])
+            {
+              std::vector<double> row{sample.time};
+              row.insert(row.end(),
+                         sample.position.begin(),
+                         sample.position.end());
+              table.push_back(row);
+            }
       }
+    link->set_stepping(true);
     return true;
   }
 
@@ -509,11 +522,8 @@ namespace tissuefem::tool
       << (haptic_updates ? sum_error / haptic_updates : 0.) << ", max "
       << max_error << " (force units; largest tool force " << max_force << ")";
     if (link)
-      s << "\nlive client: " << link->samples << " positions received, "
-        << link->answers << " forces sent, "
-        << (link->answers ? 100. * live_within_budget / link->answers : 100.)
-        << " % computed within the haptic budget (answers wait while a step "
-           "runs); "
+      s << "\nlive client: " << link->samples << " positions received; "
+        << link->report(last_time ? *last_time : 0.) << "; "
         << (link->ended() ? "session ended: " + link->reason()
                           : std::string("session open at the end"));
     return s.str();

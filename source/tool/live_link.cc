@@ -10,7 +10,9 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -23,9 +25,11 @@ namespace tissuefem::tool
   LiveLink::LiveLink(const int          port,
                      const double       timeout,
                      const unsigned int dim,
+                     const double       period,
                      const std::string &port_file)
       : timeout(timeout)
       , dim(dim)
+      , period(period)
   {
     int bound_port = 0;
     if (parallel_tools::is_root())
@@ -71,14 +75,116 @@ namespace tissuefem::tool
     parallel_tools::screen()
       << "tool: waiting for the live client on 127.0.0.1:" << bound_port
       << " (lines 't x y z'; port also in " << port_file << ")" << std::endl;
+    if (parallel_tools::is_root())
+      worker = std::thread([this] { serve(); });
   }
 
 
   LiveLink::~LiveLink()
   {
+    stop = true;
+    if (worker.joinable())
+      worker.join();
     close_client();
     if (listener >= 0)
       ::close(listener);
+  }
+
+
+  bool
+  LiveLink::wait_readable(const int fd)
+  {
+    // Slices of 20 ms, so that the destructor's stop ends the wait soon.
+    const auto start = std::chrono::steady_clock::now();
+    while (!stop)
+      {
+        pollfd    request{fd, POLLIN, 0};
+        const int ready = ::poll(&request, 1, 20);
+        if (ready > 0)
+          return true;
+        if (ready < 0 && errno != EINTR)
+          return false;
+        if (std::chrono::duration<double>(std::chrono::steady_clock::now()
+                                          - start)
+              .count()
+            >= timeout)
+          return false;
+      }
+    return false;
+  }
+
+
+  void
+  LiveLink::serve()
+  {
+    std::string reason;
+    if (!wait_readable(listener))
+      reason = "no client connected within 'Tool/Live timeout' ("
+               + std::to_string(timeout) + " s)";
+    else if ((client = ::accept(listener, nullptr, nullptr)) < 0)
+      reason
+        = std::string("accepting the client failed: ") + std::strerror(errno);
+    while (reason.empty())
+      {
+        if (!wait_readable(client))
+          {
+            reason = stop ? "the run ended"
+                          : "the client sent nothing for 'Tool/Live timeout' ("
+                              + std::to_string(timeout) + " s)";
+            break;
+          }
+        char          buffer[4096];
+        const ssize_t n = ::recv(client, buffer, sizeof(buffer), 0);
+        if (n <= 0)
+          {
+            reason = "the client closed the connection";
+            break;
+          }
+        pending.append(buffer, n);
+        if (pending.size() > (1u << 20))
+          {
+            reason = "the client sent a line longer than 1 MB";
+            break;
+          }
+        answer_lines(reason);
+      }
+    std::lock_guard<std::mutex> guard(lock);
+    thread_end  = reason;
+    thread_done = true;
+    // How far the simulation (its last recorded step) was behind the
+    // client's clock when the client stopped.
+    lag_at_end = std::max(0., latest_client_time - model.time);
+    arrived.notify_all();
+  }
+
+
+  std::vector<double>
+  LiveLink::force_at(const double time, const std::vector<double> &position)
+  {
+    std::vector<double>         f(dim, 0.);
+    std::lock_guard<std::mutex> guard(lock);
+    if (origin.empty())
+      origin = position;
+    if (!model.valid || !model.holding)
+      return f;
+    for (unsigned int i = 0; i < dim; ++i)
+      {
+        f[i] = model.force[i] + model.rate[i] * (time - model.time);
+        for (unsigned int j = 0; j < dim; ++j)
+          f[i] += model.stiffness[i * dim + j]
+                  * (position[j] - origin[j] - model.position[j]);
+      }
+    return f;
+  }
+
+
+  void
+  LiveLink::set_model(const ForceModel &new_model)
+  {
+    if (!parallel_tools::is_root())
+      return;
+    std::lock_guard<std::mutex> guard(lock);
+    model = new_model;
   }
 
 
@@ -91,87 +197,67 @@ namespace tissuefem::tool
   }
 
 
-  std::vector<LiveLink::Sample>
-  LiveLink::read_lines(std::string &reason)
+  bool
+  LiveLink::answer_lines(std::string &reason)
   {
-    std::vector<Sample> received;
-    const int           wait_ms = static_cast<int>(1000 * timeout);
-    if (client < 0)
+    std::size_t end;
+    while ((end = pending.find('\n')) != std::string::npos)
       {
-        pollfd request{listener, POLLIN, 0};
-        if (::poll(&request, 1, wait_ms) <= 0)
+        const auto  read = std::chrono::steady_clock::now();
+        std::string line = pending.substr(0, end);
+        pending.erase(0, end + 1);
+        if (!line.empty() && line.back() == '\r')
+          line.pop_back();
+        if (line.find_first_not_of(" \t") == std::string::npos)
+          continue;
+        if (line == "bye")
           {
-            reason = "no client connected within 'Tool/Live timeout' ("
-                     + std::to_string(timeout) + " s)";
-            return received;
+            reason = "the client said bye";
+            return false;
           }
-        client = ::accept(listener, nullptr, nullptr);
-        if (client < 0)
+        std::istringstream in(line);
+        Sample             sample;
+        sample.position.resize(dim);
+        in >> sample.time;
+        for (auto &x : sample.position)
+          in >> x;
+        std::string rest;
+        bool        finite = std::isfinite(sample.time);
+        for (const double x : sample.position)
+          finite = finite && std::isfinite(x);
+        if (in.fail() || (in >> rest) || !finite)
           {
-            reason = std::string("accepting the client failed: ")
-                     + std::strerror(errno);
-            return received;
+            reason = "malformed line from the client: '" + line.substr(0, 80)
+                     + "' (expected 't' and " + std::to_string(dim)
+                     + " finite coordinates)";
+            return false;
           }
+        // Answer first: the device is waiting.
+        std::ostringstream answer;
+        answer << std::setprecision(10) << sample.time;
+        for (const double f : force_at(sample.time, sample.position))
+          answer << ' ' << f;
+        answer << '\n';
+        const std::string text = answer.str();
+        // MSG_NOSIGNAL: a client that went away must not kill the run.
+        if (::send(client, text.data(), text.size(), MSG_NOSIGNAL)
+            != static_cast<ssize_t>(text.size()))
+          {
+            reason = "the client stopped reading";
+            return false;
+          }
+        const double latency = std::chrono::duration<double>(
+                                 std::chrono::steady_clock::now() - read)
+                                 .count();
+        std::lock_guard<std::mutex> guard(lock);
+        latencies.push_back(latency);
+        if (step_running)
+          ++during_steps;
+        latest_client_time = std::max(latest_client_time, sample.time);
+        queue.push_back(std::move(sample));
+        arrived.notify_all();
       }
-    while (received.empty())
-      {
-        std::size_t end;
-        while ((end = pending.find('\n')) != std::string::npos)
-          {
-            std::string line = pending.substr(0, end);
-            pending.erase(0, end + 1);
-            if (!line.empty() && line.back() == '\r')
-              line.pop_back();
-            if (line.find_first_not_of(" \t") == std::string::npos)
-              continue;
-            if (line == "bye")
-              {
-                reason = "the client said bye";
-                return received;
-              }
-            std::istringstream in(line);
-            Sample             sample;
-            sample.position.resize(dim);
-            in >> sample.time;
-            for (auto &x : sample.position)
-              in >> x;
-            std::string rest;
-            bool        finite = std::isfinite(sample.time);
-            for (const double x : sample.position)
-              finite = finite && std::isfinite(x);
-            if (in.fail() || (in >> rest) || !finite)
-              {
-                reason = "malformed line from the client: '"
-                         + line.substr(0, 80) + "' (expected 't' and "
-                         + std::to_string(dim) + " finite coordinates)";
-                return received;
-              }
-            received.push_back(sample);
-          }
-        if (!received.empty())
-          break;
-        pollfd request{client, POLLIN, 0};
-        if (::poll(&request, 1, wait_ms) <= 0)
-          {
-            reason = "the client sent nothing for 'Tool/Live timeout' ("
-                     + std::to_string(timeout) + " s)";
-            return received;
-          }
-        char          buffer[4096];
-        const ssize_t n = ::recv(client, buffer, sizeof(buffer), 0);
-        if (n <= 0)
-          {
-            reason = "the client closed the connection";
-            return received;
-          }
-        pending.append(buffer, n);
-        if (pending.size() > (1u << 20))
-          {
-            reason = "the client sent a line longer than 1 MB";
-            return received;
-          }
-      }
-    return received;
+    return true;
   }
 
 
@@ -182,10 +268,13 @@ namespace tissuefem::tool
     std::string         reason;
     if (!has_ended && parallel_tools::is_root())
       {
-        if (!send_failure.empty())
-          reason = send_failure;
-        else
-          received = read_lines(reason);
+        std::unique_lock<std::mutex> guard(lock);
+        arrived.wait(guard, [this] { return !queue.empty() || thread_done; });
+        received.assign(queue.begin(), queue.end());
+        queue.clear();
+        // Positions that came before the end are still followed.
+        if (received.empty())
+          reason = thread_end;
       }
     // Every process follows the same trajectory: share the samples.
     std::vector<double> flat;
@@ -207,30 +296,39 @@ namespace tissuefem::tool
       {
         has_ended  = true;
         end_reason = reason;
-        close_client();
       }
     return received;
   }
 
 
-  void
-  LiveLink::send(const double time, const std::vector<double> &force)
+  std::string
+  LiveLink::report(const double simulated_time) const
   {
-    ++answers;
-    if (!parallel_tools::is_root() || client < 0 || !send_failure.empty())
-      return;
-    std::ostringstream line;
-    line << std::setprecision(10) << time;
-    for (const double f : force)
-      line << ' ' << f;
-    line << '\n';
-    const std::string text = line.str();
-    // MSG_NOSIGNAL: a client that went away must not kill the run.
-    if (::send(client, text.data(), text.size(), MSG_NOSIGNAL)
-        != static_cast<ssize_t>(text.size()))
-      {
-        send_failure = "the client stopped reading";
-        close_client();
-      }
+    std::lock_guard<std::mutex> guard(lock);
+    std::vector<double>         sorted(latencies);
+    std::sort(sorted.begin(), sorted.end());
+    auto quantile = [&](const double q) {
+      return sorted.empty()
+               ? 0.
+               : 1e3
+                   * sorted[std::min<std::size_t>(sorted.size() - 1,
+                                                  q * sorted.size())];
+    };
+    const auto within
+      = std::upper_bound(sorted.begin(), sorted.end(), period) - sorted.begin();
+    std::ostringstream s;
+    s << std::setprecision(3) << sorted.size()
+      << " positions answered from the force model while steps run; answer "
+         "latency (reading a position to sending its force, ms): median "
+      << quantile(0.5) << ", 99th percentile " << quantile(0.99) << ", max "
+      << (sorted.empty() ? 0. : 1e3 * sorted.back()) << "; "
+      << (sorted.empty() ? 100. : 100. * within / sorted.size())
+      << " % within one haptic period (" << 1e3 * period << " ms); "
+      << during_steps << " answered while a step ran; when the client "
+      << "stopped the simulation was "
+      << (thread_done ? lag_at_end
+                      : std::max(0., latest_client_time - simulated_time))
+      << " time units behind its latest time";
+    return s.str();
   }
 } // namespace tissuefem::tool

@@ -81,12 +81,17 @@ namespace tissuefem::solvers
      * (direct solvers) of the previous call on the same matrix as is, for
      * methods that keep one matrix for many right-hand sides (simplified
      * Newton); iterative solvers keep their preconditioner anyway.
+     * @p relative_tolerance > 0 asks an iterative solver for |b - A x| <=
+     * that times |b| (an inexact Newton method's forcing term) instead of
+     * 'Relative tolerance', when that is looser; direct solvers ignore
+     * it.
      */
     void
     solve(const MatrixType &A,
           VectorType       &x,
           const VectorType &b,
-          const bool        refactorize = true);
+          const bool        refactorize        = true,
+          const double      relative_tolerance = 0);
 
     const LinearSolverStatistics &
     statistics() const

@@ -30,6 +30,14 @@ namespace tissuefem::solvers
     bool energy_line_search;
     bool lift_boundary_increments;
     bool verbose;
+    /// Whether Newton keeps the Jacobian (and its factorization or AMG
+    /// hierarchy) while it contracts fast enough (modified Newton).
+    bool reuse_jacobian;
+    /// The largest |R_{k+1}| / |R_k| with a kept Jacobian before it is
+    /// assembled and factorized anew.
+    double reuse_contraction;
+    /// Converged when max |du| <= this times the body's diameter.
+    double displacement_tolerance;
   };
 
   struct NewtonResult
@@ -42,6 +50,8 @@ namespace tissuefem::solvers
     std::string         failure;
     double              assembly_seconds = 0;
     double              solve_seconds    = 0;
+    /// Jacobians assembled (and factorized) by this call.
+    unsigned int jacobians = 0;
   };
 
   /**
@@ -56,14 +66,27 @@ namespace tissuefem::solvers
    * the model cannot evaluate (an inverted element), which the line search
    * treats as a failed trial. @p solve_jacobian(du, rhs) solves J du = rhs.
    * Converged when |R| <= absolute tolerance, or |R| <= relative tolerance
-   * times the first |R|, or |du| <= update tolerance (1 + |u|), with R
-   * evaluated at the new iterate.
+   * times the first |R|, or |du| <= update tolerance (1 + |u|), or max |du|
+   * <= displacement tolerance times @p length_scale, with R evaluated at
+   * the new iterate.
+   *
+   * @p solve_jacobian(du, rhs, refactorize) solves with the last assembled
+   * Jacobian; with 'Jacobian reuse', Newton assembles residuals only and
+   * solves with the kept factorization (refactorize false) while |R|
+   * contracts by at least 'Reuse contraction' per iteration and the line
+   * search takes full steps; otherwise it assembles the Jacobian at the
+   * current iterate and refactorizes. @p jacobian_current says that the
+   * caller has just assembled and factorized a Jacobian near @p u (the
+   * first iteration may then reuse it).
    */
   NewtonResult
   solve_newton(
     const NewtonParameters &parameters,
     VectorType             &u,
     const std::function<void(const VectorType &, VectorType &, bool)> &assemble,
-    const std::function<void(VectorType &, const VectorType &)> &solve_jacobian,
-    const std::function<double(const VectorType &)>             &energy = {});
+    const std::function<void(VectorType &, const VectorType &, bool)>
+                                                    &solve_jacobian,
+    const std::function<double(const VectorType &)> &energy           = {},
+    const double                                     length_scale     = 0,
+    const bool                                       jacobian_current = false);
 } // namespace tissuefem::solvers

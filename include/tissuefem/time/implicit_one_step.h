@@ -93,8 +93,9 @@ namespace tissuefem::time
     /// One Newton iteration from the guess @p u with the change of the
     /// prescribed values as inhomogeneous constraints of the update
     /// (Operators::implicit_residual_lifting); leaves @p u unchanged if the
-    /// guess cannot be evaluated.
-    void
+    /// guess cannot be evaluated. Returns the largest entry of the update
+    /// (length units), -1 if none was made.
+    double
     lift_boundary_increment(const double mass_coefficient,
                             const double time,
                             VectorType  &u,

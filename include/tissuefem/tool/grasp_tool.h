@@ -75,7 +75,8 @@ namespace tissuefem::tool
 
     /**
      * Live mode: receives positions from the client until they cover
-     * @p time, answering each with the force extrapolated to its time.
+     * @p time (the link's thread has answered each with the force model of
+     * the last record()); the step then starts.
      * Returns false when the session ended before (the run should stop;
      * live_end() says why). Without a live client: true at once.
      */
@@ -106,7 +107,6 @@ namespace tissuefem::tool
 
     ToolParameters                       parameters;
     std::unique_ptr<LiveLink>            link;
-    unsigned int                         live_within_budget = 0;
     Point<dim>                           grasp_point;
     std::vector<unsigned int>            vertices;
     std::unique_ptr<FunctionParser<dim>> trajectory;

@@ -1,6 +1,11 @@
 #pragma once
 
+#include <atomic>
+#include <condition_variable>
+#include <deque>
+#include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace tissuefem::tool
@@ -17,11 +22,19 @@ namespace tissuefem::tool
    *                                       at that time, one line per
    *                                       position received
    *
-   * and "bye" (or closing the connection) ends the session. Process 0
-   * talks to the client; every process gets the samples. A client that
-   * does not connect, or sends nothing, within the timeout, closes the
-   * connection, or sends a malformed line ends the session: ended() turns
-   * true with reason(); the run then finishes cleanly with what it has.
+   * and "bye" (or closing the connection) ends the session.
+   *
+   * Answers never wait for the simulation: on process 0 a communication
+   * thread reads each position and answers it at once from the latest
+   * force model (set_model(): the last simulated force plus the secant
+   * stiffness times the tool's motion since, or its rate times the time
+   * since), while the simulation steps on the other threads. The positions
+   * are queued for the simulation, whose receive() waits until some
+   * arrive: the simulation is paced by the client's clock and never runs
+   * ahead of it. Every process gets the samples. A client that does not
+   * connect, or sends nothing, within the timeout, closes the connection,
+   * or sends a malformed line ends the session: ended() turns true with
+   * reason(); the run then finishes cleanly with what it has.
    */
   class LiveLink
   {
@@ -32,12 +45,30 @@ namespace tissuefem::tool
       std::vector<double> position;
     };
 
+    /**
+     * What the communication thread answers with, in the tool's
+     * coordinates (dim entries, dim x dim for the stiffness, row-major):
+     * f(t, x) = force + stiffness (x - position) + rate (t - time) while
+     * holding, 0 otherwise.
+     */
+    struct ForceModel
+    {
+      bool                valid   = false;
+      bool                holding = false;
+      double              time    = 0;
+      std::vector<double> force, position, stiffness, rate;
+    };
+
     /// Listens on 127.0.0.1:@p port (0: any free port) and writes the
     /// port number to @p port_file (complete, then renamed into place) so
-    /// that a client can find it. Throws InputError if it cannot listen.
+    /// that a client can find it; starts the communication thread on
+    /// process 0. @p period is the device's period (1 / 'Haptic rate'),
+    /// against which answer latencies are reported. Throws InputError if
+    /// it cannot listen.
     LiveLink(int                port,
              double             timeout,
              unsigned int       dim,
+             double             period,
              const std::string &port_file);
     ~LiveLink();
 
@@ -46,9 +77,19 @@ namespace tissuefem::tool
     std::vector<Sample>
     receive();
 
-    /// Sends "t f..." to the client (process 0; others do nothing).
+    /// The model later answers use (process 0; others ignore it); its
+    /// positions are displacements from the first position received, as
+    /// GraspTool::displacement() gives them.
     void
-    send(double time, const std::vector<double> &force);
+    set_model(const ForceModel &model);
+
+    /// Whether a simulation step runs now (for the report of answers sent
+    /// during steps).
+    void
+    set_stepping(const bool stepping)
+    {
+      step_running = stepping;
+    }
 
     bool
     ended() const
@@ -60,22 +101,59 @@ namespace tissuefem::tool
     {
       return end_reason;
     }
-    /// Positions received and answers sent so far.
-    unsigned int samples = 0, answers = 0;
+
+    /// Positions received and answered so far (process 0's counts, shared
+    /// by receive()).
+    unsigned int samples = 0;
+
+    /// What the device saw (process 0), for the end of the run: answers,
+    /// latency median, 99th percentile and largest (from reading a
+    /// position to sending its answer, ms), share within one period,
+    /// answers sent while a step ran, and the lag of the simulated time
+    /// behind the client's latest time when the client stopped (or, while
+    /// it goes on, of @p simulated_time).
+    std::string
+    report(const double simulated_time) const;
 
   private:
     double       timeout;
     unsigned int dim;
+    double       period;
     int          listener = -1, client = -1;
     std::string  pending; // bytes of an incomplete line
     bool         has_ended = false;
     std::string  end_reason;
-    /// Set on process 0 when sending failed; shared at the next receive().
-    std::string send_failure;
 
-    /// Process 0's part of receive(): the lines, or an end reason.
-    std::vector<Sample>
-    read_lines(std::string &reason);
+    // Shared between the communication thread and the simulation.
+    mutable std::mutex      lock;
+    std::condition_variable arrived;
+    std::deque<Sample>      queue;
+    ForceModel              model;
+    std::string             thread_end; ///< why the thread stopped
+    bool                    thread_done = false;
+    std::atomic<bool>       stop{false}, step_running{false};
+    std::vector<double>     latencies; ///< seconds, one per answer
+    unsigned int            during_steps       = 0;
+    double                  latest_client_time = 0;
+    double                  lag_at_end         = 0;
+    std::vector<double>     origin;
+    std::thread             worker;
+
+    /// The communication thread: accept, then read, answer and queue
+    /// positions until the session ends or stop is set.
+    void
+    serve();
+    /// Parses complete lines of pending; returns false with @p reason
+    /// when the session ends.
+    bool
+    answer_lines(std::string &reason);
+    /// The answer to a position at @p time under the current model.
+    std::vector<double>
+    force_at(const double time, const std::vector<double> &position);
+    /// Waits up to the timeout for @p fd to be readable, in slices, so
+    /// that stop is seen; false on timeout or stop.
+    bool
+    wait_readable(const int fd);
     void
     close_client();
   };
