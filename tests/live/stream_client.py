@@ -48,16 +48,21 @@ def main():
     parser.add_argument("--ramp", type=float, default=0.2)
     parser.add_argument("--dim", type=int, default=3)
     parser.add_argument("--check", action="store_true")
-    parser.add_argument("extra", nargs="*", help="more tissuefem arguments")
-    args = parser.parse_args()
+    # Whatever follows '--' goes to tissuefem (e.g. --set 'A/B=c').
+    argv = sys.argv[1:]
+    extra = argv[argv.index("--") + 1:] if "--" in argv else []
+    args = parser.parse_args(argv[:argv.index("--")] if "--" in argv else argv)
+    args.extra = extra
 
     os.makedirs(args.workdir, exist_ok=True)
+    port_file = os.path.join(args.workdir, "results", "live_port")
+    if os.path.exists(port_file):
+        os.remove(port_file)  # a stale one from an earlier run
     log = open(os.path.join(args.workdir, "run.log"), "w")
     command = [os.path.abspath(args.tissuefem), os.path.abspath(args.scene),
                "--set", "Output/Directory=results"] + args.extra
     process = subprocess.Popen(command, cwd=args.workdir, stdout=log,
                                stderr=subprocess.STDOUT)
-    port_file = os.path.join(args.workdir, "results", "live_port")
     for _ in range(600):
         if os.path.exists(port_file) and os.path.getsize(port_file) > 0:
             break
