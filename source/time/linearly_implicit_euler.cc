@@ -46,13 +46,48 @@ namespace tissuefem::time
   class LinearlyImplicitEuler : public ImplicitOneStep
   {
   public:
-    explicit LinearlyImplicitEuler(const ParameterHandler &)
+    explicit LinearlyImplicitEuler(const ParameterHandler &prm)
     {
+      auto &p = const_cast<ParameterHandler &>(prm);
+      p.enter_subsection("Time integration");
+      p.enter_subsection("Linearly implicit Euler");
+      interval = p.get_integer("Factorization interval");
+      p.leave_subsection();
+      p.leave_subsection();
     }
 
     static void
-    declare_parameters(ParameterHandler &)
+    declare_parameters(ParameterHandler &prm)
     {
+      prm.enter_subsection("Linearly implicit Euler");
+      prm.declare_entry(
+        "Factorization interval",
+        "1",
+        Patterns::Integer(1, 1000),
+        "Steps one factorization of M/h^2 + K serves. 1 (default): a new "
+        "Jacobian and factorization every step (Baraff and Witkin's "
+        "method). n > 1: the residual and the boundary lifting are still "
+        "those of the step, but the solve reuses the factorization made up "
+        "to n - 1 steps before (a W-method; first order still, with an "
+        "error that grows with n and with how fast the stiffness changes), "
+        "made anew at once when the step size or the constraints change "
+        "or a step fails. A step then costs a residual and a "
+        "back-substitution instead of a factorization: what steps at a "
+        "haptic rate need. Runs with n > 1 cannot be checkpointed "
+        "bit-identically.");
+      prm.leave_subsection();
+    }
+
+    bool
+    checkpointable() const override
+    {
+      return interval == 1;
+    }
+
+    void
+    mesh_changed() override
+    {
+      factorized_step = 0;
     }
 
   protected:
@@ -113,22 +148,36 @@ namespace tissuefem::time
           ++report.jacobian_evaluations;
           residual *= -1.;
           start = std::chrono::steady_clock::now();
-          context->linear_solver.solve(solid.jacobian(), update, residual);
+          // A kept factorization serves while it is recent and of this
+          // step size (see 'Factorization interval').
+          const bool fresh
+            = std::abs(h - factorized_step) > 1e-12 * h || age + 1 >= interval;
+          context->linear_solver.solve(solid.jacobian(),
+                                       update,
+                                       residual,
+                                       fresh);
           report.solve_seconds += seconds_since(start);
           ++report.newton_iterations;
+          age             = fresh ? 0 : age + 1;
+          factorized_step = h;
         }
       catch (const SolverError &e)
         {
+          factorized_step = 0;
           return e.what();
         }
       next.u += update;
       // The prescribed values (already reached up to round-off) and
       // hanging nodes set exactly.
       solid.apply_dirichlet_values(t_new, next.u);
-      if (!std::isfinite(next.u.l2_norm()))
-        return "the update is not finite";
-      if (!std::isfinite(solid.stored_energy(next.u)))
-        return "the step inverts an element (stored energy not finite)";
+      if (!std::isfinite(next.u.l2_norm())
+          || !std::isfinite(solid.stored_energy(next.u)))
+        {
+          factorized_step = 0;
+          return std::isfinite(next.u.l2_norm())
+                   ? "the step inverts an element (stored energy not finite)"
+                   : "the update is not finite";
+        }
       next.time = t_new;
       finish(state, u_tilde, h, next);
       return {};
@@ -136,6 +185,12 @@ namespace tissuefem::time
 
   private:
     VectorType u_tilde, residual, update;
+    /// 'Factorization interval'.
+    unsigned int interval = 1;
+    /// The step size of the kept factorization (0: none usable) and the
+    /// steps it has served since it was made.
+    double       factorized_step = 0;
+    unsigned int age             = 0;
   };
 
   TISSUEFEM_REGISTER_INTEGRATOR(
