@@ -52,6 +52,35 @@ namespace tissuefem::materials
       return mu * distance + 0.5 * lambda * volumetric * volumetric;
     }
 
+    /**
+     * P = dPsi/dF = 2 mu (F - R) + lambda (tr(R^T F) - d) R in closed form,
+     * for the explicit methods' force loop (the tangent stays AD): with F =
+     * R S, the terms of dR vanish in the gradient, since R^T dR is skew and
+     * S - I and the identity are symmetric (McAdams et al. 2011 give the
+     * same stress). R is the polar rotation in double precision, a few
+     * iterations instead of AD through all of them; tissuefem
+     * --check-material checks it against the energy.
+     */
+    Tensor<2, dim>
+    first_piola_kirchhoff(const Tensor<2, dim> &F, const Tensor<1, dim> &) const
+    {
+      SmallMatrix<dim, double> matrix;
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = 0; j < dim; ++j)
+          matrix[i][j] = F[i][j];
+      const SmallMatrix<dim, double> R       = rotation(matrix);
+      double                         trace_S = 0;
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = 0; j < dim; ++j)
+          trace_S += R[i][j] * F[i][j];
+      Tensor<2, dim> P;
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = 0; j < dim; ++j)
+          P[i][j] = 2. * mu * (F[i][j] - R[i][j])
+                    + lambda * (trace_S - double(dim)) * R[i][j];
+      return P;
+    }
+
     bool
     admits_inversion() const override
     {
@@ -111,8 +140,10 @@ namespace tissuefem::materials
                     R[i][j] = next;
                   }
               // Two more sweeps after the values converge let the
-              // derivatives (which converge with them) settle too.
-              if (change < 1e-15 && iteration > 2)
+              // derivatives (which converge with them) settle too; plain
+              // numbers stop at once.
+              if (change < 1e-15
+                  && (std::is_arithmetic_v<Number> || iteration > 2))
                 break;
             }
         }

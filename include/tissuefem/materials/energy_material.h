@@ -85,6 +85,22 @@ namespace tissuefem::materials
   {
   };
 
+  /// Whether @p Model gives its first Piola-Kirchhoff stress in closed form,
+  /// first_piola_kirchhoff(F, fibre).
+  template <typename Model, int dim, typename = void>
+  struct HasClosedFormFirstPiola : std::false_type
+  {
+  };
+  template <typename Model, int dim>
+  struct HasClosedFormFirstPiola<
+    Model,
+    dim,
+    std::void_t<decltype(std::declval<const Model &>().first_piola_kirchhoff(
+      std::declval<const Tensor<2, dim> &>(),
+      std::declval<const Tensor<1, dim> &>()))>> : std::true_type
+  {
+  };
+
   /**
    * Turns an energy density into a material: @p Model writes
    *
@@ -147,7 +163,9 @@ namespace tissuefem::materials
     Tensor<2, dim>
     stress(const Tensor<2, dim> &F, const Tensor<1, dim> &fibre) const override
     {
-      if constexpr (HasClosedFormStress<Model, dim>::value)
+      if constexpr (HasClosedFormFirstPiola<Model, dim>::value)
+        return model().first_piola_kirchhoff(F, fibre);
+      else if constexpr (HasClosedFormStress<Model, dim>::value)
         {
           const Tensor<2, dim> E
             = 0.5 * (transpose(F) * F - unit_symmetric_tensor<dim>());
