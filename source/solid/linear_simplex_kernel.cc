@@ -17,6 +17,24 @@ namespace tissuefem::solid
     /// Cells per batch: enough to amortize the model's virtual call, few
     /// enough that the batch's tangents stay in the L1/L2 cache.
     constexpr unsigned int batch_size = 16;
+
+    /// Each thread's work space for one batch: deformation gradients,
+    /// fibres, stresses and tangents at its points, sized once.
+    template <int dim>
+    struct WorkSpace
+    {
+      std::vector<Tensor<2, dim>> F, P;
+      std::vector<Tensor<1, dim>> a;
+      std::vector<Tensor<4, dim>> A;
+    };
+
+    template <int dim>
+    WorkSpace<dim> &
+    work_space()
+    {
+      thread_local WorkSpace<dim> space;
+      return space;
+    }
   } // namespace
 
 
@@ -167,18 +185,15 @@ namespace tissuefem::solid
     const Input                                  &input,
     std::vector<std::pair<unsigned int, double>> &inverted)
   {
-    // Work space of this thread, sized once (a batch has at most
-    // batch_size cells of at most n_q points each).
-    thread_local std::vector<Tensor<2, dim>> F, P;
-    thread_local std::vector<Tensor<1, dim>> a;
-    thread_local std::vector<Tensor<4, dim>> A;
+    // A batch has at most batch_size cells of at most n_q points each.
+    auto              &w          = work_space<dim>();
     const unsigned int max_points = batch_size * max_points_per_cell;
-    if (F.size() < max_points)
+    if (w.F.size() < max_points)
       {
-        F.resize(max_points);
-        P.resize(max_points);
-        a.resize(max_points);
-        A.resize(max_points);
+        w.F.resize(max_points);
+        w.P.resize(max_points);
+        w.a.resize(max_points);
+        w.A.resize(max_points);
       }
     std::array<unsigned int, batch_size> first_point;
     std::array<bool, batch_size>         skipped;
@@ -208,8 +223,8 @@ namespace tissuefem::solid
         skipped[b - batch.begin] = false;
         for (unsigned int p = point_begin[c]; p < point_begin[c + 1]; ++p)
           {
-            F[n_points] = Fc;
-            a[n_points] = point_fibre[p];
+            w.F[n_points] = Fc;
+            w.a[n_points] = point_fibre[p];
             ++n_points;
           }
       }
@@ -218,91 +233,103 @@ namespace tissuefem::solid
         if (input.jacobian)
           {
             material.stresses_and_tangents(
-              n_points, F.data(), a.data(), P.data(), A.data(), method);
+              n_points, w.F.data(), w.a.data(), w.P.data(), w.A.data(), method);
             if (project)
               for (unsigned int p = 0; p < n_points; ++p)
-                materials::project_to_positive_definite(A[p]);
+                materials::project_to_positive_definite(w.A[p]);
           }
         else
-          material.stresses(n_points, F.data(), a.data(), P.data());
+          material.stresses(n_points, w.F.data(), w.a.data(), w.P.data());
       }
 
-    const double rho  = batch.density;
-    const double mass = rho / ((dim + 1) * (dim + 2));
     for (unsigned int b = batch.begin; b < batch.end; ++b)
+      cell_objects(order[b],
+                   skipped[b - batch.begin],
+                   first_point[b - batch.begin],
+                   batch.density,
+                   input);
+  }
+
+
+  template <int dim>
+  void
+  LinearSimplexKernel<dim>::cell_objects(const unsigned int c,
+                                         const bool         skipped,
+                                         const unsigned int first_point,
+                                         const double       rho,
+                                         const Input       &input)
+  {
+    const auto  &w       = work_space<dim>();
+    const bool   elastic = input.internal && input.u != nullptr;
+    const double mass    = rho / ((dim + 1) * (dim + 2));
+    double      *r       = &vectors[c * n_dofs];
+    double      *K = input.jacobian ? &matrices[c * n_dofs * n_dofs] : nullptr;
+    std::fill(r, r + n_dofs, 0.);
+    if (K)
+      std::fill(K, K + n_dofs * n_dofs, 0.);
+    // Cells not asked for, and inverted ones (the caller throws).
+    if (skipped)
+      return;
+    const Tensor<1, dim> *g = &gradients[c * n_nodes];
+    if (elastic)
       {
-        const unsigned int c = order[b];
-        double            *r = &vectors[c * n_dofs];
-        double *K = input.jacobian ? &matrices[c * n_dofs * n_dofs] : nullptr;
-        std::fill(r, r + n_dofs, 0.);
-        if (K)
-          std::fill(K, K + n_dofs * n_dofs, 0.);
-        // Cells not asked for, and inverted ones (the caller throws).
-        if (skipped[b - batch.begin])
-          continue;
-        const Tensor<1, dim> *g = &gradients[c * n_nodes];
-        if (elastic)
+        // f_k = sum_points weight P g_k; K_(ka)(lb) = sum weight A_ambn
+        // g_km g_ln.
+        unsigned int p = first_point;
+        for (unsigned int s = point_begin[c]; s < point_begin[c + 1]; ++s, ++p)
           {
-            // f_k = sum_points w P g_k; K_(ka)(lb) = sum w A_ambn g_km g_ln.
-            unsigned int p = first_point[b - batch.begin];
-            for (unsigned int s = point_begin[c]; s < point_begin[c + 1];
-                 ++s, ++p)
+            const double weight = point_weight[s];
+            for (unsigned int k = 0; k < n_nodes; ++k)
               {
-                const double w = point_weight[s];
-                for (unsigned int k = 0; k < n_nodes; ++k)
-                  {
-                    const Tensor<1, dim> f = w * (P[p] * g[k]);
-                    for (unsigned int i = 0; i < dim; ++i)
-                      r[k * dim + i] += f[i];
-                  }
-                if (!K)
-                  continue;
-                for (unsigned int k = 0; k < n_nodes; ++k)
-                  {
-                    // B[a][b][n] = w A[a][m][b][n] g_k[m]
-                    Tensor<3, dim> B;
-                    for (unsigned int i = 0; i < dim; ++i)
-                      for (unsigned int m = 0; m < dim; ++m)
-                        B[i] += (w * g[k][m]) * A[p][i][m];
-                    for (unsigned int l = k; l < n_nodes; ++l)
-                      for (unsigned int i = 0; i < dim; ++i)
-                        for (unsigned int j = 0; j < dim; ++j)
-                          K[(k * dim + i) * n_dofs + l * dim + j]
-                            += B[i][j] * g[l];
-                  }
+                const Tensor<1, dim> f = weight * (w.P[p] * g[k]);
+                for (unsigned int i = 0; i < dim; ++i)
+                  r[k * dim + i] += f[i];
+              }
+            if (!K)
+              continue;
+            for (unsigned int k = 0; k < n_nodes; ++k)
+              {
+                // B[a][b][n] = weight A[a][m][b][n] g_k[m]
+                Tensor<3, dim> B;
+                for (unsigned int i = 0; i < dim; ++i)
+                  for (unsigned int m = 0; m < dim; ++m)
+                    B[i] += (weight * g[k][m]) * w.A[p][i][m];
+                for (unsigned int l = k; l < n_nodes; ++l)
+                  for (unsigned int i = 0; i < dim; ++i)
+                    for (unsigned int j = 0; j < dim; ++j)
+                      K[(k * dim + i) * n_dofs + l * dim + j] += B[i][j] * g[l];
               }
           }
-        const double V = volume[c];
-        if (input.external)
-          for (unsigned int k = 0; k < n_nodes; ++k)
+      }
+    const double V = volume[c];
+    if (input.external)
+      for (unsigned int k = 0; k < n_nodes; ++k)
+        for (unsigned int i = 0; i < dim; ++i)
+          r[k * dim + i] -= rho * input.gravity[i] * V / (dim + 1);
+    if (input.w)
+      {
+        const int *G = &ghost[c * n_dofs];
+        for (unsigned int k = 0; k < n_nodes; ++k)
+          for (unsigned int l = 0; l < n_nodes; ++l)
             for (unsigned int i = 0; i < dim; ++i)
-              r[k * dim + i] -= rho * input.gravity[i] * V / (dim + 1);
-        if (input.w)
-          {
-            const int *G = &ghost[c * n_dofs];
-            for (unsigned int k = 0; k < n_nodes; ++k)
-              for (unsigned int l = 0; l < n_nodes; ++l)
-                for (unsigned int i = 0; i < dim; ++i)
-                  r[k * dim + i]
-                    += (k == l ? 2. : 1.) * mass * V * input.w[G[l * dim + i]];
-          }
-        if (K)
-          {
-            const double m = input.mass_jacobian_coefficient * mass * V;
-            for (unsigned int k = 0; k < n_nodes; ++k)
-              for (unsigned int l = k; l < n_nodes; ++l)
-                for (unsigned int i = 0; i < dim; ++i)
-                  K[(k * dim + i) * n_dofs + l * dim + i]
-                    += (k == l ? 2. : 1.) * m;
-            // The node blocks above the diagonal were computed; mirror them
-            // (K is symmetric: A_ambn = A_bnam).
-            for (unsigned int k = 0; k < n_nodes; ++k)
-              for (unsigned int l = 0; l < k; ++l)
-                for (unsigned int i = 0; i < dim; ++i)
-                  for (unsigned int j = 0; j < dim; ++j)
-                    K[(k * dim + i) * n_dofs + l * dim + j]
-                      = K[(l * dim + j) * n_dofs + k * dim + i];
-          }
+              r[k * dim + i]
+                += (k == l ? 2. : 1.) * mass * V * input.w[G[l * dim + i]];
+      }
+    if (K)
+      {
+        const double m = input.mass_jacobian_coefficient * mass * V;
+        for (unsigned int k = 0; k < n_nodes; ++k)
+          for (unsigned int l = k; l < n_nodes; ++l)
+            for (unsigned int i = 0; i < dim; ++i)
+              K[(k * dim + i) * n_dofs + l * dim + i] += (k == l ? 2. : 1.) * m;
+        // The node blocks above the diagonal were computed; mirror them
+        // (K is symmetric: A_ambn = A_bnam).
+        for (unsigned int k = 0; k < n_nodes; ++k)
+          for (unsigned int l = 0; l < k; ++l)
+            for (unsigned int i = 0; i < dim; ++i)
+              for (unsigned int j = 0; j < dim; ++j)
+                K[(k * dim + i) * n_dofs + l * dim + j]
+                  = K[(l * dim + j) * n_dofs + k * dim + i];
       }
   }
 

@@ -152,6 +152,16 @@ namespace tissuefem::solid
     sum_over_batches(
       const std::function<double(const Batch &)> &batch_sum) const;
 
+    /// Element vector (and matrix) of cached cell @p c from the stresses
+    /// (and tangents) of the batch's work space starting at @p first_point;
+    /// zeros if @p skipped.
+    void
+    cell_objects(const unsigned int c,
+                 const bool         skipped,
+                 const unsigned int first_point,
+                 const double       rho,
+                 const Input       &input);
+
     /// Evaluates the cells of one batch.
     void
     evaluate_batch(const Batch                                  &batch,
