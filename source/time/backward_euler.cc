@@ -161,12 +161,7 @@ namespace tissuefem::time
            const double      h,
            State            &new_state) const override
     {
-      new_state.v = new_state.u;
-      new_state.v -= old_state.u;
-      new_state.v /= h;
-      new_state.a = new_state.u;
-      new_state.a -= u_tilde;
-      new_state.a /= h * h;
+      backward_difference_rates(old_state, u_tilde, h, new_state);
     }
 
     std::vector<double>

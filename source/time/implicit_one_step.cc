@@ -165,6 +165,21 @@ namespace tissuefem::time
   }
 
 
+  void
+  ImplicitOneStep::backward_difference_rates(const State      &old_state,
+                                             const VectorType &u_tilde,
+                                             const double      h,
+                                             State            &new_state)
+  {
+    new_state.v = new_state.u;
+    new_state.v -= old_state.u;
+    new_state.v /= h;
+    new_state.a = new_state.u;
+    new_state.a -= u_tilde;
+    new_state.a /= h * h;
+  }
+
+
   double
   ImplicitOneStep::next_step_size(const double h, const bool reduced)
   {

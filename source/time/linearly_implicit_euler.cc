@@ -115,12 +115,7 @@ namespace tissuefem::time
            const double      h,
            State            &new_state) const override
     {
-      new_state.v = new_state.u;
-      new_state.v -= old_state.u;
-      new_state.v /= h;
-      new_state.a = new_state.u;
-      new_state.a -= u_tilde;
-      new_state.a *= mass_coefficient(h);
+      backward_difference_rates(old_state, u_tilde, h, new_state);
     }
 
     /// One linear solve from @p state over @p h into @p next; empty on

@@ -73,6 +73,15 @@ namespace tissuefem::time
            const double      h,
            State            &new_state) const = 0;
 
+    /// Backward Euler's rates for u_{n+1} in @p new_state: v_{n+1} =
+    /// (u_{n+1} - u_n)/h and a_{n+1} = (u_{n+1} - u_tilde)/h^2 (problem
+    /// session eqs 3-4), for the methods whose u_tilde is u_n + h v_n.
+    static void
+    backward_difference_rates(const State      &old_state,
+                              const VectorType &u_tilde,
+                              const double      h,
+                              State            &new_state);
+
     Context *context = nullptr;
 
     /**
