@@ -79,6 +79,17 @@ namespace tissuefem::solvers
       "a factorization costs 10-30 residual evaluations on a 3D mesh, so "
       "this saves most of them. false: a new Jacobian every iteration "
       "(Newton's quadratic convergence).");
+    prm.declare_entry(
+      "Jacobian reuse across steps",
+      "false",
+      Patterns::Bool(),
+      "With 'Jacobian reuse': also keep the factorization from one step to "
+      "the next while the step size stays and the steps converge, so that "
+      "a step's boundary lifting solves with it instead of factorizing; "
+      "Newton still makes a fresh one where it contracts too slowly. Off "
+      "by default: a run continued from a checkpoint factorizes anew where "
+      "the uninterrupted run would not, so the two agree only to Newton's "
+      "tolerances instead of bit for bit.");
     prm.declare_entry("Reuse contraction",
                       "0.25",
                       Patterns::Double(0, 1),
@@ -121,6 +132,7 @@ namespace tissuefem::solvers
     lift_boundary_increments    = prm.get_bool("Lift boundary increments");
     reuse_jacobian              = prm.get_bool("Jacobian reuse");
     reuse_contraction           = prm.get_double("Reuse contraction");
+    reuse_across_steps          = prm.get_bool("Jacobian reuse across steps");
     displacement_tolerance      = prm.get_double("Displacement tolerance");
     prm.leave_subsection();
   }

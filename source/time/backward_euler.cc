@@ -130,6 +130,7 @@ namespace tissuefem::time
     void
     mesh_changed() override
     {
+      ImplicitOneStep::mesh_changed();
       if (adaptive)
         set_up_error_control();
     }

@@ -37,11 +37,22 @@ namespace tissuefem::time
         rhs.equ(-1., residual);
         update.reinit(u);
         start = std::chrono::steady_clock::now();
-        context->linear_solver.solve(solid.jacobian(), update, rhs);
+        // With 'Jacobian reuse', the factorization of an earlier step of
+        // the same size serves while the steps converge (Newton makes a
+        // fresh one where it contracts too slowly).
+        const bool refactorize = !(context->newton.reuse_jacobian
+                                   && context->newton.reuse_across_steps
+                                   && kept_coefficient == mass_coefficient);
+        context->linear_solver.solve(solid.jacobian(),
+                                     update,
+                                     rhs,
+                                     refactorize);
         report.solve_seconds += seconds_since(start);
+        kept_coefficient = mass_coefficient;
         u += update;
         ++report.newton_iterations;
-        ++report.jacobian_evaluations;
+        if (refactorize)
+          ++report.jacobian_evaluations;
         return update.linfty_norm();
       }
     catch (const SolverError &)
@@ -49,6 +60,7 @@ namespace tissuefem::time
         // A guess the model cannot evaluate (inverted elements), or a
         // singular Jacobian: Newton starts from the guess with the new
         // boundary values written in, and may halve the step.
+        kept_coefficient = -1;
         return -1.;
       }
   }
@@ -105,6 +117,12 @@ namespace tissuefem::time
       lifted);
     last_iterations = result.iterations;
     report.jacobian_evaluations += result.jacobians;
+    // The factorization kept for the next step's lifting: this step's
+    // (the lifting's, or Newton's last fresh one), if the step converged.
+    if (!result.converged || motion < 0)
+      kept_coefficient = -1;
+    else if (result.jacobians > 0)
+      kept_coefficient = c;
     report.newton_iterations += result.iterations;
     report.assembly_seconds += result.assembly_seconds;
     report.solve_seconds += result.solve_seconds;

@@ -87,6 +87,7 @@ namespace tissuefem::time
     void
     mesh_changed() override
     {
+      ImplicitOneStep::mesh_changed();
       factorized_step = 0;
     }
 

@@ -33,6 +33,8 @@ namespace tissuefem::solvers
     /// Whether Newton keeps the Jacobian (and its factorization or AMG
     /// hierarchy) while it contracts fast enough (modified Newton).
     bool reuse_jacobian;
+    /// Whether the factorization is also kept from step to step.
+    bool reuse_across_steps;
     /// The largest |R_{k+1}| / |R_k| with a kept Jacobian before it is
     /// assembled and factorized anew.
     double reuse_contraction;

@@ -54,6 +54,13 @@ namespace tissuefem::time
       last_iterations = static_cast<unsigned int>(scalars.at(2));
     }
 
+    /// The kept factorization belongs to the old mesh.
+    void
+    mesh_changed() override
+    {
+      kept_coefficient = -1;
+    }
+
   protected:
     /// The coefficient c of the mass term for step size @p h.
     virtual double
@@ -117,9 +124,12 @@ namespace tissuefem::time
     double
     next_step_size(const double h, const bool reduced);
 
-    double       step_size       = 0;
-    double       failed_step     = std::numeric_limits<double>::infinity();
-    unsigned int last_iterations = 0;
+    /// The mass coefficient of the factorization the linear solver keeps
+    /// for the next step's lifting (-1: none usable).
+    double       kept_coefficient = -1;
+    double       step_size        = 0;
+    double       failed_step      = std::numeric_limits<double>::infinity();
+    unsigned int last_iterations  = 0;
     VectorType   u_tilde;
   };
 } // namespace tissuefem::time
