@@ -1,6 +1,7 @@
 #pragma once
 
 #include <tissuefem/materials/energy_material.h>
+#include <tissuefem/materials/kinematics.h>
 
 #include <cmath>
 
@@ -95,6 +96,19 @@ namespace tissuefem::materials
     {
       return invariant_energy(first_invariant<dim, Number>(F),
                               determinant<dim, Number>(F));
+    }
+
+    /// P = mu F + (lambda g - mu) g' cof F in closed form (as in
+    /// hand_coded_stress_and_tangent()), for the force loops of explicit
+    /// methods and the lean kernel; checked against the energy by
+    /// tissuefem --check-material.
+    Tensor<2, dim>
+    first_piola_kirchhoff(const Tensor<2, dim> &F, const Tensor<1, dim> &) const
+    {
+      const double J = determinant(F);
+      const double g = Volume::value(J);
+      return mu * F
+             + ((lambda * g - mu) * Volume::first_derivative(J)) * cofactor(F);
     }
 
     bool
