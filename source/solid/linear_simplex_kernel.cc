@@ -48,7 +48,7 @@ namespace tissuefem::solid
     if (dim < 2 || !discretization.simplex || discretization.fe->degree != 1
         || materials.edge_length_formulation()
         || materials.mean_dilatation_formulation() || cache.n_scalar != n_nodes
-        || cache.n_compon != dim || cache.n_q > max_points_per_cell)
+        || cache.n_compon != dim)
       return false;
     // The closed-form mass equals the general path's only where its
     // quadrature integrates phi_k phi_l exactly: compare on the reference
@@ -92,7 +92,7 @@ namespace tissuefem::solid
     point_begin.assign(1, 0);
     point_fibre.clear();
     point_weight.clear();
-    admits_inversion_everywhere = true;
+    most_points = 1;
     for (unsigned int c = 0; c < n_cells; ++c)
       {
         const unsigned int cell_index = cache.cells()[c]->active_cell_index();
@@ -106,8 +106,6 @@ namespace tissuefem::solid
           ghost[c * n_dofs + i] = ghost_index[c * n_dofs + local_index[i]];
         const auto &material
           = materials.material(cache.cells()[c]->material_id());
-        admits_inversion_everywhere
-          = admits_inversion_everywhere && material.admits_inversion();
         // One point per cell unless the fibre direction varies over it.
         bool uniform = true;
         if (material.uses_fibres())
@@ -128,6 +126,8 @@ namespace tissuefem::solid
               point_weight.push_back(JxW[q]);
             }
         point_begin.push_back(point_fibre.size());
+        most_points
+          = std::max(most_points, point_begin[c + 1] - point_begin[c]);
       }
 
     // Batches of at most batch_size cells of one material, in cache order
@@ -185,9 +185,9 @@ namespace tissuefem::solid
     const Input                                  &input,
     std::vector<std::pair<unsigned int, double>> &inverted)
   {
-    // A batch has at most batch_size cells of at most n_q points each.
+    // A batch has at most batch_size cells of at most most_points each.
     auto              &w          = work_space<dim>();
-    const unsigned int max_points = batch_size * max_points_per_cell;
+    const unsigned int max_points = batch_size * most_points;
     if (w.F.size() < max_points)
       {
         w.F.resize(max_points);

@@ -167,7 +167,6 @@ namespace tissuefem::solvers
     // With reuse, trial states get residuals only; the Jacobian is
     // assembled where it is needed (need_jacobian).
     const bool reuse         = parameters.reuse_jacobian;
-    const bool with_trial    = !reuse;
     bool       need_jacobian = !(reuse && jacobian_current);
 
     try
@@ -182,6 +181,13 @@ namespace tissuefem::solvers
     double norm = checked_l2_norm(residual);
     result.residual_norms.push_back(norm);
     const double first_norm = norm;
+    // Newton's residual tests (the relative one from the first iteration).
+    auto residual_converged = [&]() {
+      return norm <= parameters.absolute_residual_tolerance
+             || (result.iterations > 0
+                 && norm
+                      <= parameters.relative_residual_tolerance * first_norm);
+    };
 
     const bool use_energy = parameters.energy_line_search && energy
                             && parameters.max_line_search_steps > 0;
@@ -209,9 +215,7 @@ namespace tissuefem::solvers
             result.failure = "residual is not finite";
             return result;
           }
-        if (norm <= parameters.absolute_residual_tolerance
-            || (result.iterations > 0
-                && norm <= parameters.relative_residual_tolerance * first_norm))
+        if (residual_converged())
           {
             result.converged = true;
             return result;
@@ -268,7 +272,7 @@ namespace tissuefem::solvers
                 if (k == 0 && std::isfinite(trial_energy))
                   try
                     {
-                      timed_assemble(trial, trial_residual, with_trial);
+                      timed_assemble(trial, trial_residual, !reuse);
                       const double trial_norm = checked_l2_norm(trial_residual);
                       // ... and the energy did not rise by more than the
                       // first-order change (a saddle would).
@@ -306,7 +310,7 @@ namespace tissuefem::solvers
               {
                 try
                   {
-                    timed_assemble(trial, trial_residual, with_trial);
+                    timed_assemble(trial, trial_residual, !reuse);
                     accepted = std::isfinite(checked_l2_norm(trial_residual));
                     current_energy = trial_energy;
                   }
@@ -329,7 +333,7 @@ namespace tissuefem::solvers
                   // Without reuse the Jacobian is assembled with the trial
                   // residual: the full step is almost always accepted, and
                   // then it is the one the next iteration needs.
-                  timed_assemble(trial, trial_residual, with_trial);
+                  timed_assemble(trial, trial_residual, !reuse);
                   const double trial_norm = checked_l2_norm(trial_residual);
                   if (std::isfinite(trial_norm)
                       && (trial_norm < norm
@@ -375,15 +379,10 @@ namespace tissuefem::solvers
         const double previous_norm = norm;
         norm                       = checked_l2_norm(residual);
         result.residual_norms.push_back(norm);
-        if (!with_trial)
-          {
-            // Keep the Jacobian while it contracts; else assemble it here.
-            need_jacobian
-              = !(alpha == 1 && std::isfinite(norm)
-                  && norm <= parameters.reuse_contraction * previous_norm);
-          }
-        else
-          need_jacobian = true;
+        // A kept Jacobian serves while it contracts at full steps.
+        need_jacobian
+          = !(reuse && alpha == 1 && std::isfinite(norm)
+              && norm <= parameters.reuse_contraction * previous_norm);
         if (parameters.verbose)
           std::cout << "    Newton " << result.iterations << ": |R| = " << norm
                     << ", |du| = " << checked_l2_norm(update) << ", step "
@@ -398,10 +397,7 @@ namespace tissuefem::solvers
             result.converged = std::isfinite(norm);
             return result;
           }
-        const bool converging
-          = norm <= parameters.absolute_residual_tolerance
-            || norm <= parameters.relative_residual_tolerance * first_norm;
-        if (!with_trial && need_jacobian && !converging)
+        if (reuse && need_jacobian && !residual_converged())
           try
             {
               timed_assemble(u, residual, true);

@@ -23,46 +23,27 @@ namespace tissuefem::time
   ImplicitOneStep::lift_boundary_increment(const double mass_coefficient,
                                            const double time,
                                            VectorType  &u,
-                                           StepReport  &report)
+                                           StepReport  &report,
+                                           const bool   refactorize)
   {
     auto      &solid = context->solid;
-    VectorType residual, rhs, update;
-    try
-      {
-        auto start = std::chrono::steady_clock::now();
-        solid.implicit_residual_lifting(
-          u, u_tilde, mass_coefficient, time, residual);
-        report.assembly_seconds += seconds_since(start);
-        rhs.reinit(u);
-        rhs.equ(-1., residual);
-        update.reinit(u);
-        start = std::chrono::steady_clock::now();
-        // With 'Jacobian reuse', the factorization of an earlier step of
-        // the same size serves while the steps converge (Newton makes a
-        // fresh one where it contracts too slowly).
-        const bool refactorize = !(context->newton.reuse_jacobian
-                                   && context->newton.reuse_across_steps
-                                   && kept_coefficient == mass_coefficient);
-        context->linear_solver.solve(solid.jacobian(),
-                                     update,
-                                     rhs,
-                                     refactorize);
-        report.solve_seconds += seconds_since(start);
-        kept_coefficient = mass_coefficient;
-        u += update;
-        ++report.newton_iterations;
-        if (refactorize)
-          ++report.jacobian_evaluations;
-        return update.linfty_norm();
-      }
-    catch (const SolverError &)
-      {
-        // A guess the model cannot evaluate (inverted elements), or a
-        // singular Jacobian: Newton starts from the guess with the new
-        // boundary values written in, and may halve the step.
-        kept_coefficient = -1;
-        return -1.;
-      }
+    VectorType residual, update;
+    auto       start = std::chrono::steady_clock::now();
+    solid.implicit_residual_lifting(
+      u, u_tilde, mass_coefficient, time, residual);
+    report.assembly_seconds += seconds_since(start);
+    ++report.jacobian_evaluations;
+    residual *= -1.;
+    update.reinit(u);
+    start = std::chrono::steady_clock::now();
+    context->linear_solver.solve(solid.jacobian(),
+                                 update,
+                                 residual,
+                                 refactorize);
+    report.solve_seconds += seconds_since(start);
+    u += update;
+    ++report.newton_iterations;
+    return update.linfty_norm();
   }
 
 
@@ -84,10 +65,28 @@ namespace tissuefem::time
     // (a crushed body springing back) it may lead modified Newton to
     // another equilibrium (measured: tests/unit/inversion_recovery), so
     // Newton starts with a fresh Jacobian there.
-    const double motion = context->newton.lift_boundary_increments
-                            ? lift_boundary_increment(c, t_new, next.u, report)
-                            : -1.;
-    const bool   lifted = motion >= 0 && motion <= 0.01 * solid.length_scale();
+    double motion = -1;
+    if (context->newton.lift_boundary_increments)
+      try
+        {
+          // With 'Jacobian reuse across steps', the factorization of an
+          // earlier step of the same size serves while the steps converge
+          // (Newton makes a fresh one where it contracts too slowly).
+          const bool refactorize
+            = !(context->newton.reuse_jacobian
+                && context->newton.reuse_across_steps && kept_coefficient == c);
+          motion
+            = lift_boundary_increment(c, t_new, next.u, report, refactorize);
+          kept_coefficient = c;
+        }
+      catch (const SolverError &)
+        {
+          // A guess the model cannot evaluate (inverted elements), or a
+          // singular Jacobian: Newton starts from the guess with the new
+          // boundary values written in, and may halve the step.
+          kept_coefficient = -1;
+        }
+    const bool lifted = motion >= 0 && motion <= 0.01 * solid.length_scale();
     solid.apply_dirichlet_values(t_new, next.u);
     const solvers::NewtonResult result = solvers::solve_newton(
       context->newton,

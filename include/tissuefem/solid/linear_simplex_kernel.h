@@ -88,8 +88,9 @@ namespace tissuefem::solid
     };
 
     /**
-     * Element vectors (and matrices) of every cell, in the element's dof
-     * order; cells not in Input::cells get zeros. Returns the cells (cache
+     * Element vectors (and matrices) of every cell, in the kernel's dof
+     * order (node k, component a at k * dim + a); cells not in Input::cells
+     * get zeros. Returns the cells (cache
      * index, det F) where det F <= 0 for a model that cannot represent it.
      */
     std::vector<std::pair<unsigned int, double>>
@@ -130,10 +131,6 @@ namespace tissuefem::solid
     }
 
   private:
-    /// Quadrature points per cell the kernel takes (a fibre that varies
-    /// over a cell is evaluated at each).
-    static constexpr unsigned int max_points_per_cell = 64;
-
     /// Cells of one material, evaluated together.
     struct Batch
     {
@@ -192,6 +189,7 @@ namespace tissuefem::solid
     std::vector<unsigned int> row_begin;
     std::vector<unsigned int> row_positions;
     std::vector<double>       vectors, matrices;
-    bool                      admits_inversion_everywhere = true;
+    /// The most points of one cell (1, or n_q where a fibre varies).
+    unsigned int most_points = 1;
   };
 } // namespace tissuefem::solid

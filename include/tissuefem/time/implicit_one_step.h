@@ -106,16 +106,22 @@ namespace tissuefem::time
             State       &next,
             StepReport  &report);
 
-    /// One Newton iteration from the guess @p u with the change of the
-    /// prescribed values as inhomogeneous constraints of the update
-    /// (Operators::implicit_residual_lifting); leaves @p u unchanged if the
-    /// guess cannot be evaluated. Returns the largest entry of the update
-    /// (length units), -1 if none was made.
+    /// One Newton iteration from the guess @p u (with u_tilde set) with
+    /// the change of the prescribed values as inhomogeneous constraints of
+    /// the update (Operators::implicit_residual_lifting), solved with a
+    /// new factorization or, if not @p refactorize, the kept one. Returns
+    /// the largest entry of the update (length units); throws SolverError,
+    /// leaving @p u unchanged, if the guess cannot be evaluated or the
+    /// system solved.
     double
     lift_boundary_increment(const double mass_coefficient,
                             const double time,
                             VectorType  &u,
-                            StepReport  &report);
+                            StepReport  &report,
+                            const bool   refactorize = true);
+
+    /// u_tilde of the step being attempted (see predict()).
+    VectorType u_tilde;
 
   private:
     /// The step controller (see 'Maximum step halvings', 'Optimal Newton
@@ -130,6 +136,5 @@ namespace tissuefem::time
     double       step_size        = 0;
     double       failed_step      = std::numeric_limits<double>::infinity();
     unsigned int last_iterations  = 0;
-    VectorType   u_tilde;
   };
 } // namespace tissuefem::time
