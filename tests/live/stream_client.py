@@ -119,16 +119,24 @@ def main():
         position = [args.amplitude * min(t, args.ramp)] + [0.0] * (args.dim - 1)
         line = "%.6f " % t + " ".join("%.9g" % x for x in position) + "\n"
         sent[k] = time.perf_counter()
-        connection.sendall(line.encode())
+        try:
+            connection.sendall(line.encode())
+        except OSError:  # tissuefem ended its run (End time reached)
+            sent[k] = None
+            break
     reader.join(timeout=30)
-    connection.sendall(b"bye\n")
+    try:
+        connection.sendall(b"bye\n")
+    except OSError:
+        pass
     status = process.wait(timeout=600)
     connection.close()
     log.close()
     output = open(os.path.join(args.workdir, "run.log")).read()
 
     latencies = sorted(1e3 * (r - s) for s, r in zip(sent, received)
-                       if r is not None)
+                       if r is not None and s is not None)
+    planned, count = count, sum(1 for s in sent if s is not None)
     answered = len(latencies)
     print("answered: %d of %d positions" % (answered, count))
     if latencies:
@@ -146,6 +154,9 @@ def main():
     failures = []
     if status != 0:
         failures.append("tissuefem exited with status %d" % status)
+    if count != planned:
+        failures.append("tissuefem stopped reading after %d of %d positions"
+                        % (count, planned))
     if answered != count:
         failures.append("%d of %d positions answered" % (answered, count))
     if bad:
