@@ -4,6 +4,7 @@
 #include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/boundary/boundary_conditions.h>
 
+#include <cctype>
 #include <set>
 
 namespace tissuefem::boundary
@@ -87,6 +88,25 @@ namespace tissuefem::boundary
       require(!text.empty(), parameter, "empty component list");
       return ComponentMask(mask);
     }
+
+    /// Whether an expression uses the variable t (as a whole identifier,
+    /// not inside 'sqrt' or 'atan'); constants and functions of x, y, z
+    /// alone do not.
+    bool
+    names_time(const std::string &expression)
+    {
+      std::string identifier;
+      for (const char c : expression + ' ')
+        if (std::isalnum(static_cast<unsigned char>(c)) || c == '_')
+          identifier += c;
+        else
+          {
+            if (identifier == "t")
+              return true;
+            identifier.clear();
+          }
+      return false;
+    }
   } // namespace
 
 
@@ -109,7 +129,8 @@ namespace tissuefem::boundary
           {id,
            parse_mask<dim>(Utilities::trim(rest.substr(0, colon)),
                            dirichlet_name),
-           make_function<dim>(rest.substr(colon + 1), dim, dirichlet_name)});
+           make_function<dim>(rest.substr(colon + 1), dim, dirichlet_name),
+           names_time(rest.substr(colon + 1))});
       }
 
     const std::string neumann_name = "Boundary conditions/Neumann";

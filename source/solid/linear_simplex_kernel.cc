@@ -182,6 +182,7 @@ namespace tissuefem::solid
   void
   LinearSimplexKernel<dim>::evaluate_batch(
     const Batch                                  &batch,
+    const std::vector<unsigned int>              &order,
     const Input                                  &input,
     std::vector<std::pair<unsigned int, double>> &inverted)
   {
@@ -340,15 +341,22 @@ namespace tissuefem::solid
   {
     if (input.jacobian)
       matrices.resize(volume.size() * n_dofs * n_dofs);
+    // An active region computes its own cells only, batched afresh, so
+    // that its cost follows its size.
+    const bool compact = input.cells && !input.jacobian;
+    if (compact)
+      select(*input.cells);
+    const auto &cells = compact ? selection : order;
+    const auto &run   = compact ? selection_batches : batches;
     std::vector<std::pair<unsigned int, double>> inverted;
     std::mutex                                   lock;
     parallel::apply_to_subranges(
       0u,
-      static_cast<unsigned int>(batches.size()),
+      static_cast<unsigned int>(run.size()),
       [&](const unsigned int begin, const unsigned int end) {
         std::vector<std::pair<unsigned int, double>> found;
         for (unsigned int b = begin; b < end; ++b)
-          evaluate_batch(batches[b], input, found);
+          evaluate_batch(run[b], cells, input, found);
         if (!found.empty())
           {
             std::lock_guard<std::mutex> guard(lock);
@@ -358,6 +366,29 @@ namespace tissuefem::solid
       8);
     std::sort(inverted.begin(), inverted.end());
     return inverted;
+  }
+
+
+  template <int dim>
+  void
+  LinearSimplexKernel<dim>::select(const std::vector<bool> &cells)
+  {
+    selection.clear();
+    selection_batches.clear();
+    for (const Batch &batch : batches)
+      for (unsigned int b = batch.begin; b < batch.end; ++b)
+        if (cells[order[b]])
+          {
+            const auto size = static_cast<unsigned int>(selection.size());
+            if (selection_batches.empty()
+                || selection_batches.back().material != batch.material
+                || selection_batches.back().end
+                     == selection_batches.back().begin + batch_size)
+              selection_batches.push_back(
+                {size, size, batch.material, batch.density});
+            selection.push_back(order[b]);
+            ++selection_batches.back().end;
+          }
   }
 
 

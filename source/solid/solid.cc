@@ -215,16 +215,17 @@ namespace tissuefem::solid
               static_cast<TrilinosWrappers::types::int_type>(dofs[i]));
             direct = direct && owned.is_element(dofs[i])
                      && !discretization.constraints.is_constrained(dofs[i]);
+            if (owned.is_element(dofs[i]))
+              access.row[c * n + i] = owned.index_within_set(dofs[i]);
           }
         if (!direct)
           continue;
         for (unsigned int i = 0; i < n; ++i)
           {
-            const int r           = owned.index_within_set(dofs[i]);
-            access.row[c * n + i] = r;
-            int     length;
-            double *values;
-            int    *columns;
+            const int r = access.row[c * n + i];
+            int       length;
+            double   *values;
+            int      *columns;
             matrix.ExtractMyRowView(r, length, values, columns);
             for (unsigned int j = 0; j < n; ++j)
               {
@@ -237,6 +238,18 @@ namespace tissuefem::solid
           }
         access.direct[c] = true;
       }
+    // Cells by ghosted entry, for active regions (cells_touching).
+    access.cells_of_begin.assign(ghosts.NumMyElements() + 1, 0);
+    for (const int g : access.ghost_index)
+      ++access.cells_of_begin[g + 1];
+    for (unsigned int g = 0; g + 1 < access.cells_of_begin.size(); ++g)
+      access.cells_of_begin[g + 1] += access.cells_of_begin[g];
+    access.cells_of.resize(access.ghost_index.size());
+    std::vector<unsigned int> next(access.cells_of_begin.begin(),
+                                   access.cells_of_begin.end() - 1);
+    for (unsigned int c = 0; c < n_cells; ++c)
+      for (unsigned int i = 0; i < n; ++i)
+        access.cells_of[next[access.ghost_index[c * n + i]]++] = c;
   }
 
 

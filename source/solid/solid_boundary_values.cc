@@ -46,6 +46,8 @@ namespace tissuefem::solid
                                                    found[k],
                                                    d.mask);
         std::vector<DirichletPoint> points;
+        const auto                 &owned = discretization.locally_owned;
+        d.displacement->set_time(0);
         for (const auto &[dof, component] : found[dim])
           {
             DirichletPoint entry{dof,
@@ -53,6 +55,11 @@ namespace tissuefem::solid
                                  static_cast<unsigned int>(component)};
             for (unsigned int k = 0; k < dim; ++k)
               entry.point[k] = found[k].at(dof);
+            if (owned.is_element(dof)
+                && !discretization.hanging_node_constraints.is_constrained(dof))
+              entry.local = owned.index_within_set(dof);
+            if (!d.time_dependent)
+              entry.value = d.displacement->value(entry.point, entry.component);
             points.push_back(entry);
           }
         dirichlet_points.push_back(std::move(points));
@@ -86,12 +93,34 @@ namespace tissuefem::solid
   void
   Solid<dim>::apply_dirichlet_values(const double time, VectorType &u) const
   {
-    for (const auto &[dof, value] : dirichlet_values(time))
-      if (discretization.locally_owned.is_element(dof)
-          && !discretization.hanging_node_constraints.is_constrained(dof))
-        u[dof] = value;
-    u.compress(VectorOperation::insert);
-    discretization.hanging_node_constraints.distribute(u);
+    // Explicit steps call this every step: owned entries are written in
+    // place, and conditions without t keep the values found per mesh.
+    // Later conditions win over earlier ones, held vertices over all, as
+    // in dirichlet_values().
+    double *local = u.trilinos_vector()[0];
+    for (unsigned int c = 0; c < boundary_conditions.dirichlet.size(); ++c)
+      {
+        const auto &condition = boundary_conditions.dirichlet[c];
+        condition.displacement->set_time(time);
+        for (const auto &entry : dirichlet_points[c])
+          if (entry.local >= 0)
+            local[entry.local]
+              = condition.time_dependent
+                  ? condition.displacement->value(entry.point, entry.component)
+                  : entry.value;
+      }
+    if (boundary_conditions.held)
+      {
+        const auto  motion = boundary_conditions.held->motion(time);
+        const auto &owned  = discretization.locally_owned;
+        for (const auto &[dof, vertex, component] : held_dofs)
+          if (owned.is_element(dof)
+              && !discretization.hanging_node_constraints.is_constrained(dof))
+            local[owned.index_within_set(dof)]
+              = held_start.at(dof) + motion[component];
+      }
+    if (discretization.has_hanging_nodes)
+      discretization.hanging_node_constraints.distribute(u);
   }
 
 

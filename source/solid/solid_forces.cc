@@ -45,15 +45,32 @@ namespace tissuefem::solid
   Solid<dim>::cells_touching(const VectorType &mask)
   {
     make_ghosted(mask, ghosted_w);
-    const double     *values = ghosted_w.trilinos_vector()[0];
-    std::vector<bool> active(cache.cells().size(), false);
-    for (unsigned int c = 0; c < active.size(); ++c)
-      for (unsigned int i = 0; i < cache.n_dofs; ++i)
-        if (values[access.ghost_index[c * cache.n_dofs + i]] != 0)
-          {
-            active[c] = true;
-            break;
-          }
+    // Few marked entries: from them to their cells, so that the work
+    // grows with the marked part of the mesh. Many: each cell stops at
+    // its first marked entry.
+    const double      *values    = ghosted_w.trilinos_vector()[0];
+    const unsigned int n_entries = access.cells_of_begin.size() - 1;
+    const auto         n_marked  = std::count_if(values,
+                                        values + n_entries,
+                                        [](const double x) { return x != 0; });
+    std::vector<bool>  active(cache.cells().size(), false);
+    if (8 * n_marked < n_entries)
+      for (unsigned int g = 0; g < n_entries; ++g)
+        {
+          if (values[g] != 0)
+            for (unsigned int s = access.cells_of_begin[g];
+                 s < access.cells_of_begin[g + 1];
+                 ++s)
+              active[access.cells_of[s]] = true;
+        }
+    else
+      for (unsigned int c = 0; c < active.size(); ++c)
+        for (unsigned int i = 0; i < cache.n_dofs; ++i)
+          if (values[access.ghost_index[c * cache.n_dofs + i]] != 0)
+            {
+              active[c] = true;
+              break;
+            }
     return active;
   }
 
@@ -63,23 +80,36 @@ namespace tissuefem::solid
   Solid<dim>::mark_dofs_of(const std::vector<bool> &cells, VectorType &mask)
   {
     AssertDimension(cells.size(), cache.cells().size());
-    // Counts from every process's cells (ghost dofs included), then 0/1
-    // in a vector laid out like the unknowns.
+    // Active regions call this every step: owned dofs are marked in place;
+    // dofs owned by other processes are sent as counts, added there.
+    const unsigned int n = cache.n_dofs;
+    initialize_vector(mask);
+    double                              *to = mask.trilinos_vector()[0];
+    std::vector<types::global_dof_index> remote;
+    for (unsigned int c = 0; c < cells.size(); ++c)
+      {
+        if (!cells[c])
+          continue;
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            const int row = access.row[c * n + i];
+            if (row >= 0)
+              to[row] = 1.;
+            else
+              remote.push_back(cache.dofs(c)[i]);
+          }
+      }
+    if (parallel_tools::n_processes() == 1)
+      return;
     VectorType counts;
     discretization.initialize_assembly_vector(counts);
-    const std::vector<double> ones(cache.n_dofs, 1.);
-    for (unsigned int c = 0; c < cells.size(); ++c)
-      if (cells[c])
-        no_constraints.distribute_local_to_global(ones.begin(),
-                                                  ones.end(),
-                                                  cache.dofs(c),
-                                                  counts);
+    const std::vector<double> ones(remote.size(), 1.);
+    counts.add(remote, ones);
     counts.compress(VectorOperation::add);
-    initialize_vector(mask);
     const double *from = counts.trilinos_vector()[0];
-    double       *to   = mask.trilinos_vector()[0];
     for (unsigned int i = 0; i < mask.locally_owned_size(); ++i)
-      to[i] = from[i] > 0 ? 1. : 0.;
+      if (from[i] > 0)
+        to[i] = 1.;
   }
 
 

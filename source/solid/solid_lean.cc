@@ -4,6 +4,8 @@
 // general path of solid.cc.
 #include <tissuefem/solid/solid.h>
 
+#include <algorithm>
+
 namespace tissuefem::solid
 {
   template <int dim>
@@ -50,10 +52,26 @@ namespace tissuefem::solid
                             cache.cells()[c]->center());
       }
 
-    lean->add_direct(residual.trilinos_vector()[0],
-                     access.row_values,
-                     access.entry,
-                     request.jacobian);
+    // An active region (Jeffrey's node freezing) adds the cells the
+    // kernel computed, in its fixed order; otherwise every owned row
+    // gathers its entries.
+    if (request.cells && !request.jacobian)
+      {
+        double *local = residual.trilinos_vector()[0];
+        for (const unsigned int c : lean->selected())
+          if (access.direct[c] && !inverted[c])
+            {
+              const double *vector = lean->cell_vector(c);
+              const int    *row    = &access.row[c * n];
+              for (unsigned int i = 0; i < n; ++i)
+                local[row[cache.local_index[i]]] += vector[i];
+            }
+      }
+    else
+      lean->add_direct(residual.trilinos_vector()[0],
+                       access.row_values,
+                       access.entry,
+                       request.jacobian);
 
     // Cells with constrained or non-owned dofs: element order, then the
     // request's constraints.
@@ -68,6 +86,28 @@ namespace tissuefem::solid
             || (request.cells && !(*request.cells)[c]))
           continue;
         const double *vector = lean->cell_vector(c);
+        // Forces without constraints (explicit steps, active regions):
+        // owned rows are added in place, not through AffineConstraints'
+        // index lookups; cells are taken in order, so the sum is the same
+        // with any number of threads.
+        if (!request.jacobian && request.rows == &no_constraints)
+          {
+            double    *local = residual.trilinos_vector()[0];
+            const int *row   = &access.row[c * n];
+            bool       all   = true;
+            for (unsigned int i = 0; i < n; ++i)
+              if (row[index[i]] >= 0)
+                local[row[index[i]]] += vector[i];
+              else
+                all = false;
+            if (all)
+              continue;
+            for (unsigned int i = 0; i < n; ++i)
+              rhs[index[i]] = row[index[i]] >= 0 ? 0. : vector[i];
+            std::copy(cache.dofs(c), cache.dofs(c) + n, dofs.begin());
+            no_constraints.distribute_local_to_global(rhs, dofs, residual);
+            continue;
+          }
         for (unsigned int i = 0; i < n; ++i)
           rhs[index[i]] = vector[i];
         std::copy(cache.dofs(c), cache.dofs(c) + n, dofs.begin());

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 
 namespace tissuefem::time
@@ -69,19 +70,20 @@ namespace tissuefem::time
       prm.declare_entry("Active region threshold",
                         "0",
                         Patterns::Double(0),
-                        "Jeffrey's node freezing (report section 3): a node "
-                        "whose motion in a step is that of a force below "
-                        "this (force units; m |u+ - u| / dt^2, net force "
-                        "and inertia together) is not propagated, and cells "
-                        "none of whose nodes moved in the last step are not "
-                        "evaluated; nodes whose prescribed displacement "
-                        "moves are always propagated. 0: every node, "
-                        "every step (exact scheme). The error against the "
-                        "exact scheme falls with the threshold; too large a "
-                        "threshold (one that freezes moving tissue, e.g. "
-                        "1e-2 N on the muscle scene, nodes slower than "
-                        "about 0.1 m/s) has made runs unstable: check with "
-                        "parameters/studies/active_region.sh.");
+                        "Jeffrey's node freezing (report section 3), in "
+                        "force units: a node whose net force is below this "
+                        "and which is nearly at rest (m |v| / dt below this "
+                        "too) is held where it is for the step, unless holding "
+                        "it would add energy (its force pushes it on along "
+                        "its motion: h f.v > m |v|^2); cells none of whose "
+                        "nodes moved in the last step are not evaluated; "
+                        "nodes whose prescribed displacement moves are "
+                        "always propagated. 0: every node, every step "
+                        "(exact scheme). Freezing never adds energy, so "
+                        "any threshold is stable; the error against the "
+                        "exact scheme falls with the threshold. It saves "
+                        "work where most of the body rests; measure it "
+                        "with parameters/studies/active_region.sh.");
       prm.declare_entry("Allow unstable step",
                         "false",
                         Patterns::Bool(),
@@ -149,11 +151,17 @@ namespace tissuefem::time
           solid.mark_dofs_of(solid.cells_touching(active), complete);
           const auto cells = solid.cells_touching(complete);
           VectorType external;
-          solid.internal_force_on(state.u, cells, force);
+          // The nodes of the first ring get the same force either way;
+          // the others are frozen whatever their force. Where most cells
+          // are needed, all are evaluated, with all threads.
+          const auto n_cells = std::count(cells.begin(), cells.end(), true);
+          if (2 * n_cells > static_cast<long>(cells.size()))
+            solid.internal_force(state.u, force);
+          else
+            solid.internal_force_on(state.u, cells, force);
           solid.external_force(state.time, external);
           force.sadd(-1., 1., external);
-          cells_evaluated += std::count(cells.begin(), cells.end(), true)
-                             / double(cells.size());
+          cells_evaluated += n_cells / double(cells.size());
         }
       else
         net_force(state.u, state.time, force);
@@ -173,7 +181,7 @@ namespace tissuefem::time
                / denominator;
       solid.apply_dirichlet_values(state.time + h, next);
       if (threshold > 0)
-        update_active_region(state.u, h, next);
+        update_active_region(state.u, force, dt, h, next);
 
       // The acceleration at t (F/m - c v), v at t from appendix A.
       VectorType a(force);
@@ -341,45 +349,80 @@ namespace tissuefem::time
     }
 
     /**
-     * Freezes the free nodes whose proposed motion in this step is that of
-     * a force below the threshold: a node keeps u (in @p next) when
-     * |m (u+ - u)| / h^2, the force that would move it from rest by u+ - u
-     * in one step (net force and inertia together, so that a node passing
-     * through equilibrium at speed keeps moving), is below the threshold.
+     * Freezes (keeps at u in @p next) the free nodes of the first ring
+     * whose net force f = f_ext - f_int is below the threshold (Jeffrey's
+     * rule, report section 3) and which is nearly at rest (m |v| / h,
+     * the force that would stop its proposed motion v within a step, is
+     * below the threshold too), provided the freeze does not add energy.
+     *
+     * Why the proviso: without damping and for a linear model, the central
+     * difference conserves exactly
+     *   Q = 1/2 v^T M v + 1/2 u_n^T K u_{n+1},  v = (u_{n+1} - u_n) / h,
+     * which is positive below the critical step: that is its stability.
+     * Holding node i at u_n instead of its proposed u_{n+1} changes Q by
+     *   dQ_i = -1/2 m_i |v_i|^2 + 1/2 h f_i . v_i
+     * (Q is linear in u_{n+1}, so freezes add up without cross terms). A
+     * node frozen at rest stays neutral (v_i = h f_i / m_i gives dQ_i =
+     * 0); a moving node frozen while its force pushes it on, f . v > 0,
+     * adds energy. An earlier rule froze nodes whose proposed motion was
+     * small, f and inertia nearly cancelling, as in a fast oscillation:
+     * there dQ_i can be positive at every freeze; the muscle blew up at
+     * 1e-2 N.
+     * Here a node freezes only if dQ_i <= 0, i.e. h f_i . v_i <= m_i
+     * |v_i|^2, so freezing never adds energy, at any threshold (for
+     * nonlinear models to the order of the model's change within a step;
+     * damping only removes more). The error against the exact scheme
+     * falls with the threshold; a threshold above the forces that move
+     * the tissue freezes it (and the error is then of order one), stably.
+     *
      * Nodes whose prescribed displacement moves are always propagated.
      * The next step evaluates the cells within two rings of the
      * propagated nodes, so that they and their neighbours (the first
-     * ring) get complete forces; a frozen node in the first ring wakes
-     * when its force moves it by more than the threshold allows, one
-     * further out stays (no neighbour of it moved).
-     * Dofs come in blocks of dim per node.
+     * ring) get complete forces; a node further out stays frozen (none of
+     * its neighbours moved, so its force is what it was when it froze,
+     * and holding it at rest is neutral). Dofs come in blocks of dim per
+     * node.
      */
     void
-    update_active_region(const VectorType &u, const double h, VectorType &next)
+    update_active_region(const VectorType &u,
+                         const VectorType &force,
+                         const double      dt,
+                         const double      h,
+                         VectorType       &next)
     {
       double       *x              = local_entries(next);
       double       *on             = local_entries(active);
       const double *complete_force = local_entries(complete);
-      const double *up = local_entries(u), *m = local_entries(*mass),
+      const double *up = local_entries(u), *um = local_entries(previous),
+                   *f = local_entries(force), *m = local_entries(*mass),
                    *is_free         = local_entries(free);
       const unsigned int n          = local_size(next);
       const unsigned int d          = context->solid.n_components();
       double             propagated = 0;
       for (unsigned int node = 0; node + d <= n; node += d)
         {
-          double effective = 0;
-          bool   moved     = false;
+          double force_squared = 0, momentum_squared = 0, power = 0,
+                 kinetic = 0;
+          bool moved     = false;
           for (unsigned int k = node; k < node + d; ++k)
             {
-              effective += std::pow(m[k] * (x[k] - up[k]), 2);
+              // The undamped scheme's proposed velocity (the energy
+              // argument is for it; damping only removes more). From rest
+              // it is h f / m, so holding a resting node gives dQ = 0.
+              const double v
+                = (up[k] - um[k]) / dt + 0.5 * (h + dt) * f[k] / m[k];
+              force_squared += f[k] * f[k];
+              momentum_squared += std::pow(m[k] * v / h, 2);
+              power += h * f[k] * v;
+              kinetic += m[k] * v * v;
               moved = moved || (is_free[k] == 0 && x[k] != up[k]);
             }
-          // A node outside the first ring has a partial force (some of
-          // its cells were skipped) and no moving neighbour: it stays.
-          const bool propagate
-            = moved
-              || (complete_force[node] > 0
-                  && std::sqrt(effective) >= threshold * h * h);
+          const double limit = threshold * threshold;
+          const bool   freeze
+            = complete_force[node] == 0
+              || (force_squared < limit && momentum_squared < limit
+                  && power <= kinetic * (1. + 1e-12));
+          const bool propagate = moved || !freeze;
           for (unsigned int k = node; k < node + d; ++k)
             {
               on[k] = propagate ? 1. : 0.;

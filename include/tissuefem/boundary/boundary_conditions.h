@@ -44,6 +44,9 @@ namespace tissuefem::boundary
       types::boundary_id             id;
       ComponentMask                  mask;
       std::unique_ptr<Function<dim>> displacement;
+      /// False if the expressions do not name the time t: the values are
+      /// then computed once per mesh, not every step.
+      bool time_dependent = true;
     };
     struct Neumann
     {

@@ -89,9 +89,12 @@ namespace tissuefem::solid
 
     /**
      * Element vectors (and matrices) of every cell, in the kernel's dof
-     * order (node k, component a at k * dim + a); cells not in Input::cells
-     * get zeros. Returns the cells (cache
+     * order (node k, component a at k * dim + a). Returns the cells (cache
      * index, det F) where det F <= 0 for a model that cannot represent it.
+     * With Input::cells and no Jacobian (an active region), only the
+     * selected cells are computed, in batches of selected cells, and the
+     * others' element vectors are left as they were: add selected() only.
+     * With Input::cells and a Jacobian, the others get zeros.
      */
     std::vector<std::pair<unsigned int, double>>
     evaluate(const Input &input);
@@ -117,6 +120,14 @@ namespace tissuefem::solid
                const std::vector<double *> &row_values,
                const std::vector<int>      &entry,
                const bool                   jacobian) const;
+
+    /// The cells the last evaluation with Input::cells and no Jacobian
+    /// computed, in batch order.
+    const std::vector<unsigned int> &
+    selected() const
+    {
+      return selection;
+    }
 
     /// The element vector and matrix (row-major) of cached cell @p c.
     const double *
@@ -162,14 +173,24 @@ namespace tissuefem::solid
     /// Evaluates the cells of one batch.
     void
     evaluate_batch(const Batch                                  &batch,
+                   const std::vector<unsigned int>              &cells,
                    const Input                                  &input,
                    std::vector<std::pair<unsigned int, double>> &inverted);
+
+    /// Fills selection and selection_batches with the cells flagged in
+    /// @p cells, batched as batches are (one material, batch_size cells).
+    void
+    select(const std::vector<bool> &cells);
 
     materials::TangentMethod method;
     bool                     project = false;
     /// Cache indices in batch order.
     std::vector<unsigned int> order;
     std::vector<Batch>        batches;
+    /// The cells of the last active-region evaluation and their batches
+    /// (into selection).
+    std::vector<unsigned int> selection;
+    std::vector<Batch>        selection_batches;
     /// Per cache index: shape gradients [c * n_nodes + k], volume, the
     /// local ghosted index of each dof [c * n_dofs + i] (component-major
     /// per node: node k, component a at k * dim + a).

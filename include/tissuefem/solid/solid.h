@@ -302,6 +302,11 @@ namespace tissuefem::solid
       types::global_dof_index dof;
       Point<dim>              point;
       unsigned int            component;
+      /// Index among this process's owned entries; -1 if the dof is not
+      /// owned here or is a hanging node (whose value comes from others).
+      int local = -1;
+      /// The value, for conditions that do not depend on time.
+      double value = 0;
     };
     std::vector<std::vector<DirichletPoint>> dirichlet_points;
 
@@ -326,11 +331,16 @@ namespace tissuefem::solid
      */
     struct DirectAccess
     {
-      std::vector<int>      ghost_index; ///< [c * n + i]
-      std::vector<bool>     direct;      ///< [c]
-      std::vector<int>      row;         ///< [c * n + i], local row
-      std::vector<int>      entry;       ///< [c * n * n + i * n + j]
-      std::vector<double *> row_values;  ///< [local row]
+      std::vector<int>  ghost_index; ///< [c * n + i]
+      std::vector<bool> direct;      ///< [c]
+      /// [c * n + i], local row of an owned dof (constrained or not),
+      /// -1 for others
+      std::vector<int> row;
+      std::vector<int> entry; ///< [c * n * n + i * n + j]
+      /// The cached cells having ghosted entry g among their dofs:
+      /// cells_of[cells_of_begin[g]] to cells_of[cells_of_begin[g + 1]].
+      std::vector<unsigned int> cells_of_begin, cells_of;
+      std::vector<double *>     row_values; ///< [local row]
     } access;
 
     void
