@@ -179,18 +179,25 @@ namespace tissuefem::adaptation
     SolutionTransfer<dim, Vector<double>> transfer(dof_handler);
     transfer.prepare_for_coarsening_and_refinement(old_values);
     triangulation.execute_coarsening_and_refinement();
+    // The state moves to the new mesh first among those told of the
+    // change, so that they all see it there.
+    const boost::signals2::scoped_connection transfer_state
+      = solid.signals.changed.connect(
+        [&]() {
+          std::vector<Vector<double>> new_values(
+            vectors.size(), Vector<double>(dof_handler.n_dofs()));
+          transfer.interpolate(old_values, new_values);
+          for (unsigned int k = 0; k < vectors.size(); ++k)
+            {
+              solid.initialize_vector(*vectors[k]);
+              for (const auto i : discretization.locally_owned)
+                (*vectors[k])[i] = new_values[k][i];
+              vectors[k]->compress(VectorOperation::insert);
+              discretization.hanging_node_constraints.distribute(*vectors[k]);
+            }
+        },
+        boost::signals2::at_front);
     solid.setup();
-    std::vector<Vector<double>> new_values(
-      vectors.size(), Vector<double>(dof_handler.n_dofs()));
-    transfer.interpolate(old_values, new_values);
-    for (unsigned int k = 0; k < vectors.size(); ++k)
-      {
-        solid.initialize_vector(*vectors[k]);
-        for (const auto i : discretization.locally_owned)
-          (*vectors[k])[i] = new_values[k][i];
-        vectors[k]->compress(VectorOperation::insert);
-        discretization.hanging_node_constraints.distribute(*vectors[k]);
-      }
     return true;
   }
 

@@ -140,16 +140,29 @@ namespace tissuefem::problems
 
   template <int dim>
   void
-  Elasticity<dim>::move_tool(time::State &state, const bool started)
+  Elasticity<dim>::move_tool(time::State &state)
   {
-    if (!tool || !tool->due(state.time))
-      return;
-    // The constraints change: factorizations refer to the old matrix.
-    linear_solver->reset();
-    tool->act(state, *solid);
-    solid->apply_dirichlet_values(state.time, state.u);
-    if (started)
-      integrator->mesh_changed();
+    // The constraints change; the solid announces it (connect_to_changes).
+    if (tool && tool->due(state.time))
+      tool->act(state, *solid);
+  }
+
+
+  template <int dim>
+  std::vector<boost::signals2::scoped_connection>
+  Elasticity<dim>::connect_to_changes(time::State &state)
+  {
+    std::vector<boost::signals2::scoped_connection> connections;
+    // Factorizations and AMG hierarchies refer to the old matrix.
+    connections.emplace_back(solid->signals.about_to_change.connect(
+      [this]() { linear_solver->reset(); }));
+    // Nodes new on the Dirichlet boundary, or newly held, get their
+    // prescribed values; AMG's near-null space belongs to the mesh.
+    connections.emplace_back(solid->signals.changed.connect([this, &state]() {
+      solid->apply_dirichlet_values(state.time, state.u);
+      give_near_null_space();
+    }));
+    return connections;
   }
 
 
@@ -218,15 +231,10 @@ namespace tissuefem::problems
     std::vector<VectorType *> vectors = {&state.u, &state.v, &state.a};
     for (VectorType *v : integrator->history())
       vectors.push_back(v);
-    // A factorization refers to the matrix, which the new mesh replaces:
-    // drop it first.
-    linear_solver->reset();
+    // The solid announces the change to the solver, the integrator and
+    // the state's boundary values (connect_to_changes, run()).
     if (!adaptation->adapt(state.u, state.time, vectors))
       return false;
-    // Nodes new on the Dirichlet boundary get the prescribed values.
-    solid->apply_dirichlet_values(state.time, state.u);
-    give_near_null_space();
-    integrator->mesh_changed();
     parallel_tools::screen()
       << "  mesh adapted: " << triangulation.n_active_cells() << " cells, "
       << solid->n_dofs() << " unknowns" << std::endl;
@@ -392,8 +400,15 @@ namespace tissuefem::problems
     time::State   state;
     solid->initial_state(state.u, state.v);
     solid->apply_dirichlet_values(0., state.u);
-    move_tool(state, false);
+    const auto follow_changes = connect_to_changes(state);
+    move_tool(state);
     integrator->initialize(context, state);
+    // Once started, the integrator rebuilds its work vectors and masses
+    // after each change, last, when the state is on the new mesh and
+    // constraints.
+    const boost::signals2::scoped_connection restart_integrator
+      = solid->signals.changed.connect(
+        [this]() { integrator->mesh_changed(); });
     const std::string why_no_checkpoint = checkpoint_obstacle();
     const bool        restart = !run_context.restart_directory.empty();
     if ((restart || output_parameters.checkpoint_interval > 0)
@@ -475,7 +490,7 @@ namespace tissuefem::problems
               break;
             }
           TimerOutput::Scope scope(timer, "time steps (integrator)");
-          move_tool(state, true);
+          move_tool(state);
           const auto start    = std::chrono::steady_clock::now();
           report              = integrator->advance(state, end_time);
           report.step_seconds = std::chrono::duration<double>(

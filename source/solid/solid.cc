@@ -136,6 +136,7 @@ namespace tissuefem::solid
   void
   Solid<dim>::setup()
   {
+    signals.about_to_change();
     discretization.distribute(&boundary_conditions);
     const auto                       &dof_handler = discretization.dof_handler;
     TrilinosWrappers::SparsityPattern sparsity(discretization.locally_owned,
@@ -180,6 +181,7 @@ namespace tissuefem::solid
                     access.row,
                     discretization.locally_owned.n_elements());
       }
+    signals.changed();
   }
 
 

@@ -162,11 +162,17 @@ namespace tissuefem::solid
     VectorType ghosted;
     discretization.initialize_vector(ghosted, true);
     make_ghosted(u, ghosted);
+    // Where the held vertices start, before setup() announces the new
+    // constraints (those told may apply them at once). Holding changes
+    // constraints, not the numbering.
+    held_start.clear();
+    for (const auto &[dof, vertex, component] :
+         held_vertex_dofs(discretization.dof_handler,
+                          vertices,
+                          discretization.locally_relevant))
+      held_start[dof] = ghosted[dof];
     boundary_conditions.held = {vertices, motion};
     setup();
-    held_start.clear();
-    for (const auto &[dof, vertex, component] : held_dofs)
-      held_start[dof] = ghosted[dof];
   }
 
 

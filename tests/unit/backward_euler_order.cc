@@ -86,4 +86,5 @@ main(int argc, char **argv)
                          "backward Euler: observed order 1 within 0.2",
                          "orders " + std::to_string(order_1) + ", "
                            + std::to_string(order_2));
+  return tissuefem_tests::exit_status();
 }

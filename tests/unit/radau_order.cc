@@ -112,4 +112,5 @@ main(int argc, char **argv)
                          "at tolerance 1e-4 and 100 times smaller at 1e-7",
                          "errors " + std::to_string(errors[0]) + ", "
                            + std::to_string(errors[1]));
+  return tissuefem_tests::exit_status();
 }

@@ -96,7 +96,14 @@ namespace tissuefem::problems
 
     /// Lets the tool grasp or release if due (before a step).
     void
-    move_tool(time::State &state, const bool started);
+    move_tool(time::State &state);
+
+    /// Connects the linear solver (dropping factorizations before a change
+    /// of mesh or constraints) and @p state's boundary values and AMG's
+    /// near-null space (after one) to the solid's ChangeSignals; the
+    /// connections last as long as the returned objects.
+    std::vector<boost::signals2::scoped_connection>
+    connect_to_changes(time::State &state);
 
     /// The tool force into the summary file (for regression tests).
     void

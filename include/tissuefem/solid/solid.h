@@ -6,6 +6,7 @@
 #include <tissuefem/boundary/boundary_conditions.h>
 #include <tissuefem/materials/material_set.h>
 #include <tissuefem/solid/cell_cache.h>
+#include <tissuefem/solid/change_signals.h>
 #include <tissuefem/solid/discretization.h>
 #include <tissuefem/solid/fibre_field.h>
 #include <tissuefem/solid/linear_simplex_kernel.h>
@@ -32,7 +33,8 @@ namespace tissuefem::solid
    * repeated assemblies do element arithmetic only.
    *
    * After the mesh changes, call setup() again; every state vector must be
-   * transferred by the caller (see problems::MeshAdaptation). Hanging-node
+   * transferred by the caller (see adaptation::MeshAdaptation). setup()
+   * announces each change through @p signals (ChangeSignals). Hanging-node
    * values of the vectors given to the operators need not be set: the
    * operators compute them from the parents.
    */
@@ -45,9 +47,13 @@ namespace tissuefem::solid
           boundary::BoundaryConditions<dim> &boundary_conditions);
 
     /// Distributes dofs, builds constraints, the matrix and the caches for
-    /// the current mesh.
+    /// the current mesh and constraints; after the first time, announces
+    /// the change before and after (signals).
     void
     setup();
+
+    /// Announcements of changes of mesh or constraints.
+    ChangeSignals signals;
 
     void
     initialize_vector(VectorType &v) const override;
