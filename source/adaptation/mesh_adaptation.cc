@@ -1,11 +1,10 @@
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/grid/grid_refinement.h>
 #include <deal.II/lac/vector.h>
-#include <deal.II/numerics/error_estimator.h>
 #include <deal.II/numerics/solution_transfer.h>
 
+#include <tissuefem/adaptation/indicator.h>
 #include <tissuefem/adaptation/mesh_adaptation.h>
-#include <tissuefem/adaptation/stress_jump.h>
 #include <tissuefem/base/input_error.h>
 
 namespace tissuefem::adaptation
@@ -14,20 +13,17 @@ namespace tissuefem::adaptation
   MeshRefinementParameters::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Mesh refinement");
+    // The choices are the registered indicators (adaptation/indicator.h),
+    // one file each; the same in every dimension.
+    const auto &indicators = IndicatorRegistry<2>::instance();
     prm.declare_entry(
       "Indicator",
       "none",
-      Patterns::Selection("none|Kelly|stress jump"),
-      "'none': the mesh stays as built. 'Kelly': adapt the mesh during the "
-      "run from Kelly's indicator, the jump of the displacement gradient "
-      "across cell faces (length units times sqrt(length^(dim-1))); "
-      "quadrilaterals/hexahedra only (deal.II 9.4 cannot refine simplices "
-      "locally). 'stress jump': the face terms of the residual error "
-      "estimator, the jump of the traction P N across faces and its misfit "
-      "on traction boundaries, scaled by 1/(2 mu) (adaptation/stress_jump.h): "
-      "an estimate of the H1 seminorm error that weighs the force imbalance, "
-      "so stiff and loaded regions count more than Kelly's gradient jumps "
-      "say.");
+      Patterns::Selection("none|" + indicators.selection_pattern()),
+      "'none': the mesh stays as built. Otherwise the mesh adapts during "
+      "the run from the named indicator (quadrilaterals/hexahedra only: "
+      "deal.II 9.4 cannot refine simplices locally): "
+        + indicators.documentation());
     prm.declare_entry("Strategy",
                       "fixed number",
                       Patterns::Selection("fixed number|fixed fraction"),
@@ -94,6 +90,9 @@ namespace tissuefem::adaptation
       , initial_level(triangulation.n_global_levels() - 1)
   {
     if (enabled())
+      estimator
+        = IndicatorRegistry<dim>::instance().create(parameters.indicator);
+    if (enabled())
       require(!solid.get_discretization().simplex,
               "Mesh refinement/Indicator",
               "adaptive refinement needs quadrilaterals/hexahedra: deal.II "
@@ -118,20 +117,7 @@ namespace tissuefem::adaptation
     discretization.initialize_vector(ghosted, true);
     ghosted = u;
     Vector<float> indicator(triangulation.n_active_cells());
-    if (parameters.indicator == "stress jump")
-      stress_jump_indicator(solid, ghosted, time, indicator);
-    else
-      KellyErrorEstimator<dim>::estimate(*discretization.mapping,
-                                         dof_handler,
-                                         discretization.face_quadrature,
-                                         {},
-                                         ghosted,
-                                         indicator,
-                                         ComponentMask(),
-                                         nullptr,
-                                         numbers::invalid_unsigned_int,
-                                         Utilities::MPI::this_mpi_process(
-                                           comm));
+    estimator->estimate(solid, ghosted, time, indicator);
     Utilities::MPI::sum(indicator, comm, indicator);
 
     const unsigned int max_cells = parameters.max_cells > 0

@@ -1,5 +1,6 @@
 #include <deal.II/fe/fe_values.h>
 
+#include <tissuefem/adaptation/indicator.h>
 #include <tissuefem/adaptation/stress_jump.h>
 #include <tissuefem/base/parallel.h>
 
@@ -203,3 +204,35 @@ namespace tissuefem::adaptation
                        const VectorType &,
                        const double);
 } // namespace tissuefem::adaptation
+
+
+namespace tissuefem::adaptation
+{
+  /// stress_jump_indicator() as a registered refinement indicator.
+  template <int dim>
+  class StressJumpIndicator : public Indicator<dim>
+  {
+  public:
+    void
+    estimate(const solid::Solid<dim> &solid,
+             const VectorType        &u_ghosted,
+             const double             time,
+             Vector<float>           &indicator) const override
+    {
+      stress_jump_indicator(solid, u_ghosted, time, indicator);
+    }
+  };
+} // namespace tissuefem::adaptation
+
+namespace
+{
+  using tissuefem::adaptation::StressJumpIndicator;
+}
+TISSUEFEM_REGISTER_INDICATOR(
+  StressJumpIndicator,
+  "stress jump",
+  "the face terms of the residual error estimator, the jump of the "
+  "traction P N across faces and its misfit on traction boundaries, scaled "
+  "by 1/(2 mu) (adaptation/stress_jump.h): an estimate of the H1 seminorm "
+  "error that weighs the force imbalance, so stiff and loaded regions "
+  "count more than Kelly's gradient jumps say.")

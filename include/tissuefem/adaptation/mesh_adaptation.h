@@ -3,9 +3,11 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/grid/tria.h>
 
+#include <tissuefem/adaptation/indicator.h>
 #include <tissuefem/base/parallel.h>
 #include <tissuefem/solid/solid.h>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -32,14 +34,14 @@ namespace tissuefem::adaptation
 
   /**
    * Adaptive refinement and coarsening during a run: every 'Interval'
-   * steps, an error indicator per cell (Kelly's jump of the displacement
-   * gradient across faces) marks cells by a fixed fraction of the total
-   * indicator or a fixed number of cells, within bounds on levels and cell
-   * count; the mesh changes identically on every process (the indicator is
-   * summed over processes first), the solid is set up anew (hanging-node
-   * constraints included) and every given vector is interpolated to the new
-   * mesh. Quadrilaterals and hexahedra only: deal.II 9.4 cannot refine
-   * simplex meshes locally (no hanging nodes on simplices).
+   * steps, a registered error indicator per cell (Indicator) marks cells by a
+   * fixed fraction of the total indicator or a fixed number of cells, within
+   * bounds on levels and cell count; the mesh changes identically on every
+   * process (the indicator is summed over processes first), the solid is set up
+   * anew (hanging-node constraints included) and every given vector is
+   * interpolated to the new mesh. Quadrilaterals and hexahedra only:
+   * deal.II 9.4 cannot refine simplex meshes locally (no hanging nodes on
+   * simplices).
    */
   template <int dim>
   class MeshAdaptation
@@ -79,5 +81,7 @@ namespace tissuefem::adaptation
     Triangulation<dim>      &triangulation;
     solid::Solid<dim>       &solid;
     unsigned int             initial_level;
+    /// The indicator named by 'Indicator' (null for 'none').
+    std::unique_ptr<Indicator<dim>> estimator;
   };
 } // namespace tissuefem::adaptation
