@@ -1,17 +1,13 @@
 #include <deal.II/base/function_parser.h>
 #include <deal.II/grid/grid_generator.h>
-#include <deal.II/grid/grid_in.h>
-#include <deal.II/grid/grid_tools.h>
 
 #include <tissuefem/base/input_error.h>
 #include <tissuefem/base/parallel.h>
 #include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/geometry/geometry.h>
-#include <tissuefem/geometry/mesh_check.h>
-#include <tissuefem/geometry/vtu_reader.h>
+#include <tissuefem/geometry/source.h>
 
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <sstream>
 
@@ -22,18 +18,13 @@ namespace tissuefem::geometry
   {
     prm.enter_subsection("Geometry");
     {
+      // The choices are the registered sources (geometry/source.h), one
+      // file each.
+      const auto &sources = SourceRegistry<2>::instance();
       prm.declare_entry("Source",
                         "box",
-                        Patterns::Selection("box|L-shape|file"),
-                        "'box': an interval, rectangle or box from the corners "
-                        "and subdivisions below; 'L-shape' (2D, 3D): the "
-                        "square or cube [a, b]^dim (a, b the first coordinates "
-                        "of the corners) without the quadrant or octant "
-                        "[(a+b)/2, b]^dim, in 3 or 7 cells (refine with "
-                        "'Global refinements'): a re-entrant corner where the "
-                        "stress is singular; boundary ids from 'Boundary id "
-                        "predicates', as for files; 'file': read 'Mesh "
-                        "file'.");
+                        Patterns::Selection(sources.selection_pattern()),
+                        sources.documentation());
       prm.declare_entry("Cell type",
                         "hypercube",
                         Patterns::Selection("hypercube|simplex"),
@@ -142,183 +133,6 @@ namespace tissuefem::geometry
 
   namespace
   {
-    /// Maps the box [lower, upper] onto the cell spanned by 'Corners' with
-    /// the multilinear map of deal.II's reference cell.
-    template <int dim>
-    void
-    map_onto_corners(const GeometryParameters &parameters,
-                     const Point<dim>         &lower,
-                     const Point<dim>         &upper,
-                     Triangulation<dim>       &triangulation)
-    {
-      const std::string             parameter = "Geometry/Corners";
-      const std::vector<Point<dim>> corners
-        = parse_points<dim>(parameters.corners, parameter);
-      require(corners.size() == (1u << dim),
-              parameter,
-              "needs " + std::to_string(1u << dim) + " points separated by "
-                + "';', got " + std::to_string(corners.size()));
-      const auto map = [&](const Point<dim> &x) {
-        Point<dim> result;
-        for (unsigned int v = 0; v < corners.size(); ++v)
-          {
-            double weight = 1;
-            for (unsigned int d = 0; d < dim; ++d)
-              {
-                const double xi = (x[d] - lower[d]) / (upper[d] - lower[d]);
-                weight *= (v >> d) & 1 ? xi : 1 - xi;
-              }
-            result += weight * corners[v];
-          }
-        return result;
-      };
-      GridTools::transform(map, triangulation);
-      for (const auto &cell : triangulation.active_cell_iterators())
-        if (cell->measure() <= 0)
-          throw InputError(
-            "Parameter 'Geometry/Corners': mapped cell "
-            + std::to_string(cell->active_cell_index())
-            + " has no positive volume (list the corners in deal.II's vertex "
-              "order: x fastest, then y, then z)");
-    }
-
-
-    /// 'Lower corner' and 'Upper corner' for a generated mesh.
-    template <int dim>
-    std::pair<Point<dim>, Point<dim>>
-    corners(const GeometryParameters &parameters)
-    {
-      return {parse_leading_point<dim>(parameters.lower_corner,
-                                       "Geometry/Lower corner"),
-              parse_leading_point<dim>(parameters.upper_corner,
-                                       "Geometry/Upper corner")};
-    }
-
-
-    template <int dim>
-    void
-    build_box(const GeometryParameters &parameters,
-              Triangulation<dim>       &triangulation)
-    {
-      const auto [lower, upper] = corners<dim>(parameters);
-      for (unsigned int d = 0; d < dim; ++d)
-        require(upper[d] > lower[d],
-                "Geometry/Upper corner",
-                "must exceed 'Lower corner' in every coordinate");
-
-      const std::vector<std::string> pieces
-        = Utilities::split_string_list(parameters.subdivisions);
-      require(pieces.size() >= dim,
-              "Geometry/Subdivisions",
-              "needs " + std::to_string(dim) + " values");
-      std::vector<unsigned int> repetitions(dim);
-      for (unsigned int d = 0; d < dim; ++d)
-        repetitions[d] = Utilities::string_to_int(pieces[d]);
-
-      if (parameters.cell_type == "simplex" && dim > 1)
-        {
-          // deal.II 9.4 cannot colorize simplex boxes; give the faces the
-          // same ids a colorized hypercube box has.
-          GridGenerator::subdivided_hyper_rectangle_with_simplices(
-            triangulation, repetitions, lower, upper);
-          const double tolerance = 1e-10 * lower.distance(upper);
-          for (const auto &cell : triangulation.active_cell_iterators())
-            for (const auto &face : cell->face_iterators())
-              if (face->at_boundary())
-                for (unsigned int d = 0; d < dim; ++d)
-                  {
-                    if (std::abs(face->center()[d] - lower[d]) < tolerance)
-                      face->set_boundary_id(2 * d);
-                    if (std::abs(face->center()[d] - upper[d]) < tolerance)
-                      face->set_boundary_id(2 * d + 1);
-                  }
-        }
-      else
-        {
-          GridGenerator::subdivided_hyper_rectangle(
-            triangulation, repetitions, lower, upper, /*colorize=*/true);
-          // Colorizing also numbers the cells' material ids by octant;
-          // generated boxes are one material unless predicates say else.
-          for (const auto &cell : triangulation.active_cell_iterators())
-            cell->set_material_id(0);
-        }
-      if (!Utilities::trim(parameters.corners).empty())
-        map_onto_corners(parameters, lower, upper, triangulation);
-    }
-
-
-    template <int dim>
-    void
-    read_with_grid_in(const std::string  &file,
-                      const std::string  &extension,
-                      Triangulation<dim> &triangulation);
-
-
-    template <int dim>
-    void
-    read_mesh_file(const GeometryParameters &parameters,
-                   Triangulation<dim>       &triangulation)
-    {
-      const std::string &file = parameters.mesh_file;
-      require(!file.empty(), "Geometry/Mesh file", "is empty");
-      require(std::filesystem::is_regular_file(file),
-              "Geometry/Mesh file",
-              "cannot open '" + file + "'");
-      const std::string extension = std::filesystem::path(file).extension();
-      if (extension == ".vtu")
-        read_vtu(file, triangulation);
-      else
-        read_with_grid_in(file, extension, triangulation);
-      require(triangulation.n_active_cells() > 0,
-              "Geometry/Mesh file",
-              "'" + file + "' holds no cells of dimension "
-                + std::to_string(dim));
-      check_mesh(triangulation, file);
-      if (parameters.scale != 1.)
-        GridTools::scale(parameters.scale, triangulation);
-    }
-
-
-    /// Gmsh, legacy VTK and Abaqus files through deal.II's GridIn.
-    template <int dim>
-    void
-    read_with_grid_in(const std::string  &file,
-                      const std::string  &extension,
-                      Triangulation<dim> &triangulation)
-    {
-      GridIn<dim>        grid_in(triangulation);
-      std::ifstream      in(file);
-      const unsigned int reoriented
-        = extension == ".msh" ? count_inverted_gmsh_simplices(file, dim) : 0;
-      try
-        {
-          if (extension == ".msh")
-            grid_in.read_msh(in);
-          else if (extension == ".vtk")
-            grid_in.read_vtk(in);
-          else if (extension == ".inp")
-            grid_in.read_abaqus(in);
-          else
-            throw InputError("Parameter 'Geometry/Mesh file': unknown "
-                             "extension '"
-                             + extension + "' of '" + file
-                             + "' (use .msh, .vtk, .vtu or .inp)");
-        }
-      catch (const ExceptionBase &e)
-        {
-          throw InputError("Mesh file '" + file
-                           + "' could not be read: " + one_line_message(e));
-        }
-      if (reoriented > 0)
-        parallel_tools::screen()
-          << "Mesh file '" << file << "': " << reoriented
-          << " cells had their vertices in inverted order (negative volume) "
-             "and were reoriented by the reader (a safe repair: the cell is "
-             "the same)."
-          << std::endl;
-    }
-
-
     template <int dim>
     void
     apply_boundary_predicates(const std::string  &text,
@@ -377,22 +191,9 @@ namespace tissuefem::geometry
   build_triangulation(const GeometryParameters &parameters,
                       Triangulation<dim>       &triangulation)
   {
-    if (parameters.source == "file")
-      read_mesh_file(parameters, triangulation);
-    else if (parameters.source == "L-shape")
-      {
-        require(dim > 1,
-                "Geometry/Source",
-                "'L-shape' needs 2 or 3 dimensions");
-        const auto [lower, upper] = corners<dim>(parameters);
-        require(upper[0] > lower[0],
-                "Geometry/Upper corner",
-                "must exceed 'Lower corner' in its first coordinate");
-        if constexpr (dim > 1)
-          GridGenerator::hyper_L(triangulation, lower[0], upper[0]);
-      }
-    else
-      build_box(parameters, triangulation);
+    const auto source
+      = SourceRegistry<dim>::instance().create(parameters.source);
+    source->build(parameters, triangulation);
     if (parameters.global_refinements > 0
         && !triangulation.all_reference_cells_are_hyper_cube())
       {
@@ -408,7 +209,7 @@ namespace tissuefem::geometry
     else
       triangulation.refine_global(parameters.global_refinements);
     apply_boundary_predicates(parameters.boundary_id_predicates,
-                              parameters.source != "box",
+                              !source->faces_carry_ids(),
                               triangulation);
     apply_material_predicates(parameters.material_id_predicates, triangulation);
   }

@@ -26,7 +26,7 @@ namespace tissuefem::geometry
     void
     resolve_relative_to(const std::string &directory);
 
-    std::string  source;    ///< "box" or "file"
+    std::string  source;    ///< a registered Source (geometry/source.h)
     std::string  cell_type; ///< "hypercube" or "simplex"
     std::string  lower_corner, upper_corner, subdivisions, corners;
     std::string  mesh_file;

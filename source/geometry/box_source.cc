@@ -1,0 +1,150 @@
+// The generated box: an interval, rectangle or box, optionally mapped onto
+// a general quadrilateral or hexahedron.
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_tools.h>
+
+#include <tissuefem/base/input_error.h>
+#include <tissuefem/base/parameter_tools.h>
+#include <tissuefem/geometry/source.h>
+
+namespace tissuefem::geometry
+{
+  template <int dim>
+  std::pair<Point<dim>, Point<dim>>
+  box_corners(const GeometryParameters &parameters)
+  {
+    return {parse_leading_point<dim>(parameters.lower_corner,
+                                     "Geometry/Lower corner"),
+            parse_leading_point<dim>(parameters.upper_corner,
+                                     "Geometry/Upper corner")};
+  }
+
+  template std::pair<Point<1>, Point<1>>
+  box_corners<1>(const GeometryParameters &);
+  template std::pair<Point<2>, Point<2>>
+  box_corners<2>(const GeometryParameters &);
+  template std::pair<Point<3>, Point<3>>
+  box_corners<3>(const GeometryParameters &);
+
+
+  namespace
+  {
+    /// Maps the box [lower, upper] onto the cell spanned by 'Corners' with
+    /// the multilinear map of deal.II's reference cell.
+    template <int dim>
+    void
+    map_onto_corners(const GeometryParameters &parameters,
+                     const Point<dim>         &lower,
+                     const Point<dim>         &upper,
+                     Triangulation<dim>       &triangulation)
+    {
+      const std::string             parameter = "Geometry/Corners";
+      const std::vector<Point<dim>> corners
+        = parse_points<dim>(parameters.corners, parameter);
+      require(corners.size() == (1u << dim),
+              parameter,
+              "needs " + std::to_string(1u << dim) + " points separated by "
+                + "';', got " + std::to_string(corners.size()));
+      const auto map = [&](const Point<dim> &x) {
+        Point<dim> result;
+        for (unsigned int v = 0; v < corners.size(); ++v)
+          {
+            double weight = 1;
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                const double xi = (x[d] - lower[d]) / (upper[d] - lower[d]);
+                weight *= (v >> d) & 1 ? xi : 1 - xi;
+              }
+            result += weight * corners[v];
+          }
+        return result;
+      };
+      GridTools::transform(map, triangulation);
+      for (const auto &cell : triangulation.active_cell_iterators())
+        if (cell->measure() <= 0)
+          throw InputError(
+            "Parameter 'Geometry/Corners': mapped cell "
+            + std::to_string(cell->active_cell_index())
+            + " has no positive volume (list the corners in deal.II's vertex "
+              "order: x fastest, then y, then z)");
+    }
+  } // namespace
+
+
+  /**
+   * 'Lower corner' to 'Upper corner' in 'Subdivisions' cells per direction,
+   * of 'Cell type'; boundary ids 0/1 on the faces x = lower/upper, 2/3 on
+   * y, 4/5 on z, material id 0; mapped onto 'Corners' if given.
+   */
+  template <int dim>
+  class Box : public Source<dim>
+  {
+  public:
+    void
+    build(const GeometryParameters &parameters,
+          Triangulation<dim>       &triangulation) const override
+    {
+      const auto [lower, upper] = box_corners<dim>(parameters);
+      for (unsigned int d = 0; d < dim; ++d)
+        require(upper[d] > lower[d],
+                "Geometry/Upper corner",
+                "must exceed 'Lower corner' in every coordinate");
+
+      const std::vector<std::string> pieces
+        = Utilities::split_string_list(parameters.subdivisions);
+      require(pieces.size() >= dim,
+              "Geometry/Subdivisions",
+              "needs " + std::to_string(dim) + " values");
+      std::vector<unsigned int> repetitions(dim);
+      for (unsigned int d = 0; d < dim; ++d)
+        repetitions[d] = Utilities::string_to_int(pieces[d]);
+
+      if (parameters.cell_type == "simplex" && dim > 1)
+        {
+          // deal.II 9.4 cannot colorize simplex boxes; give the faces the
+          // same ids a colorized hypercube box has.
+          GridGenerator::subdivided_hyper_rectangle_with_simplices(
+            triangulation, repetitions, lower, upper);
+          const double tolerance = 1e-10 * lower.distance(upper);
+          for (const auto &cell : triangulation.active_cell_iterators())
+            for (const auto &face : cell->face_iterators())
+              if (face->at_boundary())
+                for (unsigned int d = 0; d < dim; ++d)
+                  {
+                    if (std::abs(face->center()[d] - lower[d]) < tolerance)
+                      face->set_boundary_id(2 * d);
+                    if (std::abs(face->center()[d] - upper[d]) < tolerance)
+                      face->set_boundary_id(2 * d + 1);
+                  }
+        }
+      else
+        {
+          GridGenerator::subdivided_hyper_rectangle(
+            triangulation, repetitions, lower, upper, /*colorize=*/true);
+          // Colorizing also numbers the cells' material ids by octant;
+          // generated boxes are one material unless predicates say else.
+          for (const auto &cell : triangulation.active_cell_iterators())
+            cell->set_material_id(0);
+        }
+      if (!Utilities::trim(parameters.corners).empty())
+        map_onto_corners(parameters, lower, upper, triangulation);
+    }
+
+    bool
+    faces_carry_ids() const override
+    {
+      return true;
+    }
+  };
+} // namespace tissuefem::geometry
+
+namespace
+{
+  using tissuefem::geometry::Box;
+}
+TISSUEFEM_REGISTER_GEOMETRY_SOURCE(
+  Box,
+  "box",
+  "an interval, rectangle or box from 'Lower corner', 'Upper corner', "
+  "'Subdivisions' and 'Cell type' (boundary ids 0/1 on x = lower/upper, 2/3 "
+  "on y, 4/5 on z), optionally mapped onto 'Corners'.")
