@@ -7,7 +7,6 @@
 
 #include <memory>
 #include <string>
-#include <type_traits>
 
 namespace tissuefem::adaptation
 {
@@ -38,30 +37,14 @@ namespace tissuefem::adaptation
 
   template <int dim>
   using IndicatorRegistry = Registry<Indicator<dim>>;
-
-  /// Adds @p Class (templated on dim, default-constructible) under
-  /// @p name for dim = 1, 2, 3.
-  template <template <int> class Class>
-  bool
-  register_indicator(const std::string &name, const std::string &description)
-  {
-    auto add = [&](auto &registry, auto dim_tag) {
-      constexpr int dim = decltype(dim_tag)::value;
-      registry.add(name, description, {}, []() {
-        return std::unique_ptr<Indicator<dim>>(std::make_unique<Class<dim>>());
-      });
-    };
-    add(IndicatorRegistry<1>::instance(), std::integral_constant<int, 1>());
-    add(IndicatorRegistry<2>::instance(), std::integral_constant<int, 2>());
-    add(IndicatorRegistry<3>::instance(), std::integral_constant<int, 3>());
-    return true;
-  }
 } // namespace tissuefem::adaptation
 
 /// Registers a refinement indicator at the end of its source file.
-#define TISSUEFEM_REGISTER_INDICATOR(Class, name, description)                 \
-  namespace                                                                    \
-  {                                                                            \
-    const bool tissuefem_registered_##Class                                    \
-      = ::tissuefem::adaptation::register_indicator<Class>(name, description); \
+#define TISSUEFEM_REGISTER_INDICATOR(Class, name, description) \
+  namespace                                                    \
+  {                                                            \
+    const bool tissuefem_registered_##Class                    \
+      = ::tissuefem::register_in_every_dimension<              \
+        ::tissuefem::adaptation::Indicator,                    \
+        Class>(name, description);                             \
   }

@@ -8,6 +8,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <type_traits>
 
 namespace tissuefem
 {
@@ -102,4 +103,28 @@ namespace tissuefem
   private:
     std::map<std::string, Entry> entries;
   };
+
+
+  /**
+   * Adds @p Class<dim> (default-constructible, deriving from
+   * @p Interface<dim>) under @p name to Registry<Interface<dim>> for dim =
+   * 1, 2, 3: the registration of plugins that take no parameters of their
+   * own (refinement indicators, geometry sources).
+   */
+  template <template <int> class Interface, template <int> class Class>
+  bool
+  register_in_every_dimension(const std::string &name,
+                              const std::string &description)
+  {
+    auto add = [&](auto dim_tag) {
+      constexpr int dim = decltype(dim_tag)::value;
+      Registry<Interface<dim>>::instance().add(name, description, {}, []() {
+        return std::unique_ptr<Interface<dim>>(std::make_unique<Class<dim>>());
+      });
+    };
+    add(std::integral_constant<int, 1>());
+    add(std::integral_constant<int, 2>());
+    add(std::integral_constant<int, 3>());
+    return true;
+  }
 } // namespace tissuefem

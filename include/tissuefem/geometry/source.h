@@ -7,7 +7,6 @@
 
 #include <memory>
 #include <string>
-#include <type_traits>
 #include <utility>
 
 namespace tissuefem::geometry
@@ -49,30 +48,14 @@ namespace tissuefem::geometry
   template <int dim>
   std::pair<Point<dim>, Point<dim>>
   box_corners(const GeometryParameters &parameters);
-
-  /// Adds @p Class (templated on dim, default-constructible) under @p name
-  /// for dim = 1, 2, 3.
-  template <template <int> class Class>
-  bool
-  register_source(const std::string &name, const std::string &description)
-  {
-    auto add = [&](auto &registry, auto dim_tag) {
-      constexpr int dim = decltype(dim_tag)::value;
-      registry.add(name, description, {}, []() {
-        return std::unique_ptr<Source<dim>>(std::make_unique<Class<dim>>());
-      });
-    };
-    add(SourceRegistry<1>::instance(), std::integral_constant<int, 1>());
-    add(SourceRegistry<2>::instance(), std::integral_constant<int, 2>());
-    add(SourceRegistry<3>::instance(), std::integral_constant<int, 3>());
-    return true;
-  }
 } // namespace tissuefem::geometry
 
 /// Registers a geometry source at the end of its source file.
-#define TISSUEFEM_REGISTER_GEOMETRY_SOURCE(Class, name, description)      \
-  namespace                                                               \
-  {                                                                       \
-    const bool tissuefem_registered_##Class                               \
-      = ::tissuefem::geometry::register_source<Class>(name, description); \
+#define TISSUEFEM_REGISTER_GEOMETRY_SOURCE(Class, name, description) \
+  namespace                                                          \
+  {                                                                  \
+    const bool tissuefem_registered_##Class                          \
+      = ::tissuefem::register_in_every_dimension<                    \
+        ::tissuefem::geometry::Source,                               \
+        Class>(name, description);                                   \
   }
