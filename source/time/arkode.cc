@@ -56,9 +56,9 @@ namespace tissuefem::time
   class ARKodeIntegrator : public Interface
   {
   public:
-    explicit ARKodeIntegrator(const ParameterHandler &prm)
+    explicit ARKodeIntegrator(ParameterHandler &prm)
     {
-      auto &p = const_cast<ParameterHandler &>(prm);
+      auto &p = prm;
       p.enter_subsection("Time integration");
       p.enter_subsection("ARKode");
       method          = p.get("Method");

@@ -29,9 +29,9 @@ namespace tissuefem::time
   class BackwardEuler : public ImplicitOneStep
   {
   public:
-    explicit BackwardEuler(const ParameterHandler &prm)
+    explicit BackwardEuler(ParameterHandler &prm)
     {
-      auto &p = const_cast<ParameterHandler &>(prm);
+      auto &p = prm;
       p.enter_subsection("Time integration");
       p.enter_subsection("Backward Euler");
       adaptive = p.get_bool("Adaptive step");

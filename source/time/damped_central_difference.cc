@@ -38,9 +38,9 @@ namespace tissuefem::time
   class DampedCentralDifference : public Interface
   {
   public:
-    explicit DampedCentralDifference(const ParameterHandler &prm)
+    explicit DampedCentralDifference(ParameterHandler &prm)
     {
-      auto &p = const_cast<ParameterHandler &>(prm);
+      auto &p = prm;
       p.enter_subsection("Time integration");
       p.enter_subsection("Damped central difference");
       damping        = p.get_double("Damping ratio");

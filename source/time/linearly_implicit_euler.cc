@@ -46,9 +46,9 @@ namespace tissuefem::time
   class LinearlyImplicitEuler : public ImplicitOneStep
   {
   public:
-    explicit LinearlyImplicitEuler(const ParameterHandler &prm)
+    explicit LinearlyImplicitEuler(ParameterHandler &prm)
     {
-      auto &p = const_cast<ParameterHandler &>(prm);
+      auto &p = prm;
       p.enter_subsection("Time integration");
       p.enter_subsection("Linearly implicit Euler");
       interval = p.get_integer("Factorization interval");

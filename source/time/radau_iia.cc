@@ -90,9 +90,9 @@ namespace tissuefem::time
   class RadauIIA : public Interface
   {
   public:
-    explicit RadauIIA(const ParameterHandler &prm)
+    explicit RadauIIA(ParameterHandler &prm)
     {
-      auto &p = const_cast<ParameterHandler &>(prm);
+      auto &p = prm;
       p.enter_subsection("Time integration");
       p.enter_subsection("Radau IIA");
       damping       = p.get_double("Damping ratio");

@@ -156,11 +156,12 @@ namespace tissuefem::time
     }
   };
 
-  using IntegratorRegistry = Registry<Interface, const ParameterHandler &>;
+  using IntegratorRegistry = Registry<Interface, ParameterHandler &>;
 } // namespace tissuefem::time
 
 /// Registers a time integrator at the end of its source file. @p Class must
-/// be constructible from a ParameterHandler and have a static
+/// be constructible from a ParameterHandler (which it may enter and leave
+/// subsections of) and have a static
 /// declare_parameters(ParameterHandler &).
 #define TISSUEFEM_REGISTER_INTEGRATOR(Class, name, description) \
   namespace                                                     \
@@ -170,7 +171,7 @@ namespace tissuefem::time
         name,                                                   \
         description,                                            \
         &Class::declare_parameters,                             \
-        [](const ::dealii::ParameterHandler &prm) {             \
+        [](::dealii::ParameterHandler &prm) {                   \
           return std::unique_ptr<::tissuefem::time::Interface>( \
             std::make_unique<Class>(prm));                      \
         });                                                     \
