@@ -89,15 +89,14 @@ namespace tissuefem::adaptation
       , solid(solid)
       , initial_level(triangulation.n_global_levels() - 1)
   {
-    if (enabled())
-      estimator
-        = IndicatorRegistry<dim>::instance().create(parameters.indicator);
-    if (enabled())
-      require(!solid.get_discretization().simplex,
-              "Mesh refinement/Indicator",
-              "adaptive refinement needs quadrilaterals/hexahedra: deal.II "
-              "9.4 cannot refine triangles/tetrahedra locally (use 'none', "
-              "or 'Geometry/Global refinements' for uniform refinement)");
+    if (!enabled())
+      return;
+    require(!solid.get_discretization().simplex,
+            "Mesh refinement/Indicator",
+            "adaptive refinement needs quadrilaterals/hexahedra: deal.II "
+            "9.4 cannot refine triangles/tetrahedra locally (use 'none', "
+            "or 'Geometry/Global refinements' for uniform refinement)");
+    estimator = IndicatorRegistry<dim>::instance().create(parameters.indicator);
   }
 
 

@@ -68,23 +68,50 @@ namespace tissuefem::solid
 
 
   template <int dim>
+  template <typename Visitor>
+  void
+  Solid<dim>::visit_dirichlet_values(const double   time,
+                                     const Visitor &visit) const
+  {
+    // Later conditions win over earlier ones, held vertices over all: the
+    // visitor sees the dofs in that order. Conditions without t keep the
+    // values found per mesh (explicit steps ask every step).
+    for (unsigned int c = 0; c < boundary_conditions.dirichlet.size(); ++c)
+      {
+        const auto &condition = boundary_conditions.dirichlet[c];
+        condition.displacement->set_time(time);
+        for (const auto &entry : dirichlet_points[c])
+          visit(entry.dof,
+                entry.local,
+                condition.time_dependent
+                  ? condition.displacement->value(entry.point, entry.component)
+                  : entry.value);
+      }
+    if (boundary_conditions.held)
+      {
+        const auto  motion = boundary_conditions.held->motion(time);
+        const auto &owned  = discretization.locally_owned;
+        for (const auto &[dof, vertex, component] : held_dofs)
+          visit(dof,
+                owned.is_element(dof)
+                    && !discretization.hanging_node_constraints.is_constrained(
+                      dof)
+                  ? static_cast<int>(owned.index_within_set(dof))
+                  : -1,
+                held_start.at(dof) + motion[component]);
+      }
+  }
+
+
+  template <int dim>
   std::map<types::global_dof_index, double>
   Solid<dim>::dirichlet_values(const double time) const
   {
     std::map<types::global_dof_index, double> values;
-    for (unsigned int c = 0; c < boundary_conditions.dirichlet.size(); ++c)
-      {
-        auto &function = *boundary_conditions.dirichlet[c].displacement;
-        function.set_time(time);
-        for (const auto &entry : dirichlet_points[c])
-          values[entry.dof] = function.value(entry.point, entry.component);
-      }
-    if (boundary_conditions.held)
-      {
-        const auto motion = boundary_conditions.held->motion(time);
-        for (const auto &[dof, vertex, component] : held_dofs)
-          values[dof] = held_start.at(dof) + motion[component];
-      }
+    visit_dirichlet_values(time,
+                           [&](const types::global_dof_index dof,
+                               const int,
+                               const double value) { values[dof] = value; });
     return values;
   }
 
@@ -93,32 +120,16 @@ namespace tissuefem::solid
   void
   Solid<dim>::apply_dirichlet_values(const double time, VectorType &u) const
   {
-    // Explicit steps call this every step: owned entries are written in
-    // place, and conditions without t keep the values found per mesh.
-    // Later conditions win over earlier ones, held vertices over all, as
-    // in dirichlet_values().
+    // Owned entries are written in place (not through Trilinos' index
+    // lookups and a compress).
     double *local = u.trilinos_vector()[0];
-    for (unsigned int c = 0; c < boundary_conditions.dirichlet.size(); ++c)
-      {
-        const auto &condition = boundary_conditions.dirichlet[c];
-        condition.displacement->set_time(time);
-        for (const auto &entry : dirichlet_points[c])
-          if (entry.local >= 0)
-            local[entry.local]
-              = condition.time_dependent
-                  ? condition.displacement->value(entry.point, entry.component)
-                  : entry.value;
-      }
-    if (boundary_conditions.held)
-      {
-        const auto  motion = boundary_conditions.held->motion(time);
-        const auto &owned  = discretization.locally_owned;
-        for (const auto &[dof, vertex, component] : held_dofs)
-          if (owned.is_element(dof)
-              && !discretization.hanging_node_constraints.is_constrained(dof))
-            local[owned.index_within_set(dof)]
-              = held_start.at(dof) + motion[component];
-      }
+    visit_dirichlet_values(time,
+                           [&](const types::global_dof_index,
+                               const int    index,
+                               const double value) {
+                             if (index >= 0)
+                               local[index] = value;
+                           });
     if (discretization.has_hanging_nodes)
       discretization.hanging_node_constraints.distribute(u);
   }

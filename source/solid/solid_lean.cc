@@ -52,62 +52,65 @@ namespace tissuefem::solid
                             cache.cells()[c]->center());
       }
 
-    // An active region (Jeffrey's node freezing) adds the cells the
-    // kernel computed, in its fixed order; otherwise every owned row
-    // gathers its entries.
-    if (request.cells && !request.jacobian)
-      {
-        double *local = residual.trilinos_vector()[0];
-        for (const unsigned int c : lean->selected())
-          if (access.direct[c] && !inverted[c])
-            {
-              const double *vector = lean->cell_vector(c);
-              const int    *row    = &access.row[c * n];
-              for (unsigned int i = 0; i < n; ++i)
-                local[row[cache.local_index[i]]] += vector[i];
-            }
-      }
+    // Forces without constraints (explicit steps, active regions) add a
+    // cell's owned rows in place, not through AffineConstraints' index
+    // lookups, and send the rest; cells in a fixed order, so the sum is
+    // the same with any number of threads.
+    const auto                          &index = cache.local_index;
+    Vector<double>                       rhs(n);
+    std::vector<types::global_dof_index> dofs(n);
+    double                              *local = residual.trilinos_vector()[0];
+    const auto                           add_cell = [&](const unsigned int c) {
+      const double *vector = lean->cell_vector(c);
+      const int    *row    = &access.row[c * n];
+      bool          all    = true;
+      for (unsigned int i = 0; i < n; ++i)
+        if (row[index[i]] >= 0)
+          local[row[index[i]]] += vector[i];
+        else
+          all = false;
+      if (all)
+        return;
+      for (unsigned int i = 0; i < n; ++i)
+        rhs[index[i]] = row[index[i]] >= 0 ? 0. : vector[i];
+      std::copy(cache.dofs(c), cache.dofs(c) + n, dofs.begin());
+      no_constraints.distribute_local_to_global(rhs, dofs, residual);
+    };
+    const bool unconstrained
+      = !request.jacobian && request.rows == &no_constraints;
+
+    // An active region (Jeffrey's node freezing): the cells the kernel
+    // computed, in its order. Otherwise every owned row gathers the
+    // entries of the direct cells, and the others follow.
+    const bool active_region = request.cells && !request.jacobian;
+    Assert(!active_region || unconstrained, ExcInternalError());
+    if (active_region)
+      for (const unsigned int c : lean->selected())
+        {
+          if (!inverted[c])
+            add_cell(c);
+        }
     else
-      lean->add_direct(residual.trilinos_vector()[0],
+      lean->add_direct(local,
                        access.row_values,
                        access.entry,
                        request.jacobian);
 
     // Cells with constrained or non-owned dofs: element order, then the
     // request's constraints.
-    const AffineConstraints<double>     &rows = *request.rows;
-    FullMatrix<double>                   matrix(n, n);
-    Vector<double>                       rhs(n);
-    std::vector<types::global_dof_index> dofs(n);
-    const auto                          &index = cache.local_index;
-    for (unsigned int c = 0; c < cache.cells().size(); ++c)
+    const AffineConstraints<double> &rows = *request.rows;
+    FullMatrix<double>               matrix(n, n);
+    for (unsigned int c = 0; !active_region && c < cache.cells().size(); ++c)
       {
         if (access.direct[c] || inverted[c]
             || (request.cells && !(*request.cells)[c]))
           continue;
-        const double *vector = lean->cell_vector(c);
-        // Forces without constraints (explicit steps, active regions):
-        // owned rows are added in place, not through AffineConstraints'
-        // index lookups; cells are taken in order, so the sum is the same
-        // with any number of threads.
-        if (!request.jacobian && request.rows == &no_constraints)
+        if (unconstrained)
           {
-            double    *local = residual.trilinos_vector()[0];
-            const int *row   = &access.row[c * n];
-            bool       all   = true;
-            for (unsigned int i = 0; i < n; ++i)
-              if (row[index[i]] >= 0)
-                local[row[index[i]]] += vector[i];
-              else
-                all = false;
-            if (all)
-              continue;
-            for (unsigned int i = 0; i < n; ++i)
-              rhs[index[i]] = row[index[i]] >= 0 ? 0. : vector[i];
-            std::copy(cache.dofs(c), cache.dofs(c) + n, dofs.begin());
-            no_constraints.distribute_local_to_global(rhs, dofs, residual);
+            add_cell(c);
             continue;
           }
+        const double *vector = lean->cell_vector(c);
         for (unsigned int i = 0; i < n; ++i)
           rhs[index[i]] = vector[i];
         std::copy(cache.dofs(c), cache.dofs(c) + n, dofs.begin());

@@ -58,19 +58,18 @@ namespace tissuefem::time
   public:
     explicit ARKodeIntegrator(ParameterHandler &prm)
     {
-      auto &p = prm;
-      p.enter_subsection("Time integration");
-      p.enter_subsection("ARKode");
-      method          = p.get("Method");
-      order           = p.get_integer("Order");
-      damping         = p.get_double("Damping ratio");
-      jacobian_kind   = p.get("Jacobian");
-      every_iteration = p.get("Jacobian update") == "iteration";
-      max_steps       = p.get_integer("Maximum steps per interval");
-      adaptive        = p.get_bool("Adaptive step");
-      tolerances.parse_parameters(p, "Time integration/ARKode/");
-      p.leave_subsection();
-      p.leave_subsection();
+      prm.enter_subsection("Time integration");
+      prm.enter_subsection("ARKode");
+      method          = prm.get("Method");
+      order           = prm.get_integer("Order");
+      damping         = prm.get_double("Damping ratio");
+      jacobian_kind   = prm.get("Jacobian");
+      every_iteration = prm.get("Jacobian update") == "iteration";
+      max_steps       = prm.get_integer("Maximum steps per interval");
+      adaptive        = prm.get_bool("Adaptive step");
+      tolerances.parse_parameters(prm, "Time integration/ARKode/");
+      prm.leave_subsection();
+      prm.leave_subsection();
       require(std::isfinite(damping) && damping >= 0,
               "Time integration/ARKode/Damping ratio",
               "must be >= 0");

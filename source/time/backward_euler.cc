@@ -31,13 +31,12 @@ namespace tissuefem::time
   public:
     explicit BackwardEuler(ParameterHandler &prm)
     {
-      auto &p = prm;
-      p.enter_subsection("Time integration");
-      p.enter_subsection("Backward Euler");
-      adaptive = p.get_bool("Adaptive step");
-      tolerances.parse_parameters(p, "Time integration/Backward Euler/");
-      p.leave_subsection();
-      p.leave_subsection();
+      prm.enter_subsection("Time integration");
+      prm.enter_subsection("Backward Euler");
+      adaptive = prm.get_bool("Adaptive step");
+      tolerances.parse_parameters(prm, "Time integration/Backward Euler/");
+      prm.leave_subsection();
+      prm.leave_subsection();
     }
 
     static void

@@ -40,14 +40,13 @@ namespace tissuefem::time
   public:
     explicit DampedCentralDifference(ParameterHandler &prm)
     {
-      auto &p = prm;
-      p.enter_subsection("Time integration");
-      p.enter_subsection("Damped central difference");
-      damping        = p.get_double("Damping ratio");
-      allow_unstable = p.get_bool("Allow unstable step");
-      threshold      = p.get_double("Active region threshold");
-      p.leave_subsection();
-      p.leave_subsection();
+      prm.enter_subsection("Time integration");
+      prm.enter_subsection("Damped central difference");
+      damping        = prm.get_double("Damping ratio");
+      allow_unstable = prm.get_bool("Allow unstable step");
+      threshold      = prm.get_double("Active region threshold");
+      prm.leave_subsection();
+      prm.leave_subsection();
       require(std::isfinite(threshold) && threshold >= 0,
               "Time integration/Damped central difference/Active region "
               "threshold",

@@ -48,12 +48,11 @@ namespace tissuefem::time
   public:
     explicit LinearlyImplicitEuler(ParameterHandler &prm)
     {
-      auto &p = prm;
-      p.enter_subsection("Time integration");
-      p.enter_subsection("Linearly implicit Euler");
-      interval = p.get_integer("Factorization interval");
-      p.leave_subsection();
-      p.leave_subsection();
+      prm.enter_subsection("Time integration");
+      prm.enter_subsection("Linearly implicit Euler");
+      interval = prm.get_integer("Factorization interval");
+      prm.leave_subsection();
+      prm.leave_subsection();
     }
 
     static void

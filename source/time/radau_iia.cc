@@ -92,16 +92,15 @@ namespace tissuefem::time
   public:
     explicit RadauIIA(ParameterHandler &prm)
     {
-      auto &p = prm;
-      p.enter_subsection("Time integration");
-      p.enter_subsection("Radau IIA");
-      damping       = p.get_double("Damping ratio");
-      jacobian_kind = p.get("Jacobian");
-      tolerances.parse_parameters(p, "Time integration/Radau IIA/");
-      adaptive   = p.get_bool("Adaptive step");
-      max_newton = p.get_integer("Maximum Newton iterations");
-      p.leave_subsection();
-      p.leave_subsection();
+      prm.enter_subsection("Time integration");
+      prm.enter_subsection("Radau IIA");
+      damping       = prm.get_double("Damping ratio");
+      jacobian_kind = prm.get("Jacobian");
+      tolerances.parse_parameters(prm, "Time integration/Radau IIA/");
+      adaptive   = prm.get_bool("Adaptive step");
+      max_newton = prm.get_integer("Maximum Newton iterations");
+      prm.leave_subsection();
+      prm.leave_subsection();
       const std::string section = "Time integration/Radau IIA/";
       require(std::isfinite(damping) && damping >= 0,
               section + "Damping ratio",

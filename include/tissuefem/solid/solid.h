@@ -228,6 +228,14 @@ namespace tissuefem::solid
     void
     find_dirichlet_points();
 
+    /// Calls @p visit(dof, owned index or -1, value) for every Dirichlet
+    /// dof at @p time, in the order in which later conditions override
+    /// earlier ones (held vertices last); the owned index is -1 for dofs
+    /// not owned here and for hanging nodes.
+    template <typename Visitor>
+    void
+    visit_dirichlet_values(const double time, const Visitor &visit) const;
+
     /// The prescribed displacement of every Dirichlet dof at @p time.
     std::map<types::global_dof_index, double>
     dirichlet_values(const double time) const;
