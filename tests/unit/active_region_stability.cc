@@ -80,14 +80,10 @@ namespace
     prm.leave_subsection();
     prm.leave_subsection();
     tissuefem_tests::SolidScene<3> scene(prm);
-    auto                          &solid = *scene.solid;
-    time::Context                  context{solid,
-                          scene.time_parameters,
-                          scene.newton_parameters,
-                          *scene.linear_solver};
-    auto integrator = time::IntegratorRegistry::instance().create(
-      scene.time_parameters.integrator, prm);
-    time::State state;
+    auto                          &solid      = *scene.solid;
+    time::Context                  context    = scene.context();
+    auto                           integrator = scene.integrator(prm);
+    time::State                    state;
     solid.initial_state(state.u, state.v);
     std::mt19937                           random(seed);
     std::uniform_real_distribution<double> noise(-0.02, 0.02);

@@ -52,14 +52,10 @@ namespace
       end
     )");
     tissuefem_tests::SolidScene<3> scene(prm);
-    auto                          &solid = *scene.solid;
-    time::Context                  context{solid,
-                          scene.time_parameters,
-                          scene.newton_parameters,
-                          *scene.linear_solver};
-    auto integrator = time::IntegratorRegistry::instance().create(
-      scene.time_parameters.integrator, prm);
-    time::State state;
+    auto                          &solid      = *scene.solid;
+    time::Context                  context    = scene.context();
+    auto                           integrator = scene.integrator(prm);
+    time::State                    state;
     solid.initial_state(state.u, state.v);
     integrator->initialize(context, state);
     while (state.time < 3 - 1e-9)

@@ -62,15 +62,10 @@ main(int argc, char **argv)
     end
   )");
   tissuefem_tests::SolidScene<2> scene(prm);
-  auto                          &solid = *scene.solid;
-  time::Context                  context{solid,
-                        scene.time_parameters,
-                        scene.newton_parameters,
-                        *scene.linear_solver};
-  auto                           integrator
-    = time::IntegratorRegistry::instance().create("damped central difference",
-                                                  prm);
-  time::State state;
+  auto                          &solid      = *scene.solid;
+  time::Context                  context    = scene.context();
+  auto                           integrator = scene.integrator(prm);
+  time::State                    state;
   solid.initial_state(state.u, state.v);
   {
     // The integrator's report of its critical step stays out of the

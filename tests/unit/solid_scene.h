@@ -55,6 +55,22 @@ namespace tissuefem_tests
         = std::make_unique<solvers::LinearSolver>(linear_parameters);
     }
 
+    /// What an integrator drives: this scene's solid, time and Newton
+    /// parameters and linear solver.
+    time::Context
+    context()
+    {
+      return {*solid, time_parameters, newton_parameters, *linear_solver};
+    }
+
+    /// The integrator 'Time integration/Integrator' names.
+    std::unique_ptr<time::Interface>
+    integrator(ParameterHandler &prm) const
+    {
+      return time::IntegratorRegistry::instance().create(
+        time_parameters.integrator, prm);
+    }
+
     Triangulation<dim>                                 triangulation;
     materials::MaterialParameters                      material_parameters;
     std::unique_ptr<materials::MaterialSet<dim>>       materials;
@@ -118,14 +134,10 @@ namespace tissuefem_tests
     prm.set("End time", end_time);
     prm.leave_subsection();
     SolidScene<dim> scene(prm);
-    auto           &solid = *scene.solid;
-    time::Context   context{solid,
-                          scene.time_parameters,
-                          scene.newton_parameters,
-                          *scene.linear_solver};
-    auto            integrator = time::IntegratorRegistry::instance().create(
-      scene.time_parameters.integrator, prm);
-    time::State state;
+    auto           &solid      = *scene.solid;
+    time::Context   context    = scene.context();
+    auto            integrator = scene.integrator(prm);
+    time::State     state;
     solid.initial_state(state.u, state.v);
     solid.apply_dirichlet_values(0., state.u);
     integrator->initialize(context, state);
