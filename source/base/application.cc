@@ -10,7 +10,7 @@
 #include <tissuefem/geometry/geometry.h>
 #include <tissuefem/materials/consistency_check.h>
 #include <tissuefem/materials/material_set.h>
-#include <tissuefem/output/output_writer.h>
+#include <tissuefem/output/output_parameters.h>
 #include <tissuefem/problems/interface.h>
 #include <tissuefem/solid/discretization.h>
 #include <tissuefem/solvers/linear_solver.h>

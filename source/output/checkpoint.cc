@@ -3,6 +3,7 @@
 #include <tissuefem/base/input_error.h>
 #include <tissuefem/output/checkpoint.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -12,7 +13,8 @@ namespace tissuefem::output
 {
   namespace
   {
-    const std::string format = "tissuefem-checkpoint 1";
+    // 2: postprocessors' state as 'state' lines.
+    const std::string format = "tissuefem-checkpoint 2";
 
     std::string
     vector_file(const std::string &directory, const unsigned int rank)
@@ -23,10 +25,41 @@ namespace tissuefem::output
     double
     parse_double(const std::string &text)
     {
-      // std::hexfloat input is unreliable across standard libraries.
-      return std::strtod(text.c_str(), nullptr);
+      return exact_value(text);
+    }
+
+    /// A postprocessor's name as one word, and back.
+    std::string
+    state_key(std::string name)
+    {
+      std::replace(name.begin(), name.end(), ' ', '_');
+      return name;
+    }
+
+    std::string
+    state_name(std::string key)
+    {
+      std::replace(key.begin(), key.end(), '_', ' ');
+      return key;
     }
   } // namespace
+
+
+  std::string
+  exact_text(const double value)
+  {
+    std::ostringstream s;
+    s << std::hexfloat << value;
+    return s.str();
+  }
+
+
+  double
+  exact_value(const std::string &text)
+  {
+    // std::hexfloat input is unreliable across standard libraries.
+    return std::strtod(text.c_str(), nullptr);
+  }
 
 
   void
@@ -82,14 +115,15 @@ namespace tissuefem::output
               << "time " << checkpoint.time << '\n'
               << "processes " << checkpoint.n_processes << '\n'
               << "unknowns " << checkpoint.n_dofs << '\n'
-              << "integrator " << checkpoint.integrator << '\n'
-              << "damping_work " << checkpoint.damping_work << '\n';
+              << "integrator " << checkpoint.integrator << '\n';
           for (const double s : checkpoint.integrator_scalars)
             out << "scalar " << s << '\n';
           for (const auto &[file, size] : checkpoint.file_sizes)
             out << "file " << size << ' ' << file << '\n';
-          for (const auto &[t, name] : checkpoint.pvd_records)
-            out << "pvd " << t << ' ' << name << '\n';
+          // Names may hold spaces, the lines anything but line breaks.
+          for (const auto &[name, lines] : checkpoint.postprocessor_state)
+            for (const std::string &l : lines)
+              out << "state " << state_key(name) << ' ' << l << '\n';
           out << "end\n";
           out.close();
           if (!out)
@@ -162,18 +196,17 @@ namespace tissuefem::output
               std::getline(fields, rest);
               checkpoint.integrator = value + rest;
             }
-          else if (key == "damping_work")
-            checkpoint.damping_work = parse_double(value);
           else if (key == "scalar")
             checkpoint.integrator_scalars.push_back(parse_double(value));
-          else if (key == "file" || key == "pvd")
+          else if (key == "file" || key == "state")
             {
-              std::string name;
-              std::getline(fields >> std::ws, name);
+              std::string rest;
+              std::getline(fields >> std::ws, rest);
               if (key == "file")
-                checkpoint.file_sizes[name] = std::stoull(value);
+                checkpoint.file_sizes[rest] = std::stoull(value);
               else
-                checkpoint.pvd_records.emplace_back(parse_double(value), name);
+                checkpoint.postprocessor_state[state_name(value)].push_back(
+                  rest);
             }
           else
             throw InputError(where + "unknown entry '" + key

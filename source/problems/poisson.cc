@@ -10,7 +10,7 @@
 #include <tissuefem/base/parallel.h>
 #include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/geometry/geometry.h>
-#include <tissuefem/output/output_writer.h>
+#include <tissuefem/output/output_parameters.h>
 #include <tissuefem/problems/interface.h>
 #include <tissuefem/solid/discretization.h>
 

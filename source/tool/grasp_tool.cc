@@ -529,7 +529,32 @@ namespace tissuefem::tool
     return s.str();
   }
 
+  template <int dim>
+  void
+  GraspTool<dim>::declare_parameters(ParameterHandler &prm)
+  {
+    ToolParameters::declare_parameters(prm);
+  }
+
+
+  template <int dim>
+  std::unique_ptr<Interface<dim>>
+  GraspTool<dim>::create(ParameterHandler &prm, const Triangulation<dim> &mesh)
+  {
+    ToolParameters parameters;
+    parameters.parse_parameters(prm);
+    if (!parameters.enabled)
+      return nullptr;
+    return std::make_unique<GraspTool<dim>>(parameters, mesh);
+  }
+
   template class GraspTool<1>;
   template class GraspTool<2>;
   template class GraspTool<3>;
+
+  TISSUEFEM_REGISTER_TOOL(GraspTool,
+                          "grasp",
+                          "holds the vertices near 'Tool/Grasp point' from "
+                          "'Grasp time' to 'Release time' and moves them along "
+                          "a trajectory or a live device's positions.")
 } // namespace tissuefem::tool

@@ -1,15 +1,12 @@
-// A scene for unit tests: everything a run builds from the parameters
-// (mesh, materials, boundary conditions, solid, solvers), on one serial
-// mesh, so that a test can drive the solid and integrators itself.
+// A scene for unit tests: the scene a run builds from the parameters
+// (Scene: mesh, materials, boundary conditions, solid) and the
+// solvers an integrator needs, so that a test can drive the solid and
+// integrators itself.
 #pragma once
 
 #include <deal.II/base/parameter_handler.h>
 
-#include <tissuefem/boundary/boundary_conditions.h>
-#include <tissuefem/geometry/geometry.h>
-#include <tissuefem/materials/material_set.h>
-#include <tissuefem/solid/discretization.h>
-#include <tissuefem/solid/solid.h>
+#include <tissuefem/scene/scene.h>
 #include <tissuefem/solvers/linear_solver.h>
 #include <tissuefem/solvers/newton.h>
 #include <tissuefem/time/interface.h>
@@ -23,30 +20,11 @@ namespace tissuefem_tests
   using namespace tissuefem;
 
   template <int dim>
-  struct SolidScene
+  struct SolidScene : public Scene<dim>
   {
     explicit SolidScene(ParameterHandler &prm)
+        : Scene<dim>(prm)
     {
-      geometry::GeometryParameters geometry_parameters;
-      geometry_parameters.parse_parameters(prm);
-      geometry::build_triangulation(geometry_parameters, triangulation);
-      material_parameters.parse_parameters(prm);
-      materials
-        = std::make_unique<materials::MaterialSet<dim>>(material_parameters,
-                                                        prm);
-      boundary::BoundaryParameters boundary_parameters;
-      boundary_parameters.parse_parameters(prm);
-      boundary_conditions = std::make_unique<boundary::BoundaryConditions<dim>>(
-        boundary_parameters);
-      solid::FiniteElementParameters fe_parameters;
-      fe_parameters.parse_parameters(prm);
-      discretization
-        = std::make_unique<solid::Discretization<dim>>(triangulation,
-                                                       fe_parameters,
-                                                       dim);
-      solid = std::make_unique<solid::Solid<dim>>(*discretization,
-                                                  *materials,
-                                                  *boundary_conditions);
       time_parameters.parse_parameters(prm);
       newton_parameters.parse_parameters(prm);
       solvers::LinearSolverParameters linear_parameters;
@@ -60,7 +38,7 @@ namespace tissuefem_tests
     time::Context
     context()
     {
-      return {*solid, time_parameters, newton_parameters, *linear_solver};
+      return {*this->solid, time_parameters, newton_parameters, *linear_solver};
     }
 
     /// The integrator 'Time integration/Integrator' names.
@@ -71,15 +49,9 @@ namespace tissuefem_tests
         time_parameters.integrator, prm);
     }
 
-    Triangulation<dim>                                 triangulation;
-    materials::MaterialParameters                      material_parameters;
-    std::unique_ptr<materials::MaterialSet<dim>>       materials;
-    std::unique_ptr<boundary::BoundaryConditions<dim>> boundary_conditions;
-    std::unique_ptr<solid::Discretization<dim>>        discretization;
-    std::unique_ptr<solid::Solid<dim>>                 solid;
-    time::TimeParameters                               time_parameters;
-    solvers::NewtonParameters                          newton_parameters;
-    std::unique_ptr<solvers::LinearSolver>             linear_solver;
+    time::TimeParameters                   time_parameters;
+    solvers::NewtonParameters              newton_parameters;
+    std::unique_ptr<solvers::LinearSolver> linear_solver;
   };
 
 

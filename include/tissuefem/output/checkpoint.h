@@ -26,10 +26,20 @@ namespace tissuefem::output
     std::vector<double> integrator_scalars;
     /// Output file -> its size in bytes at the checkpoint; a restart cuts
     /// the files back to these sizes and appends.
-    std::map<std::string, std::uintmax_t>       file_sizes;
-    double                                      damping_work = 0;
-    std::vector<std::pair<double, std::string>> pvd_records;
+    std::map<std::string, std::uintmax_t> file_sizes;
+    /// What each postprocessor carries from step to step, as lines of
+    /// text of its own making (no line breaks), by postprocessor name.
+    std::map<std::string, std::vector<std::string>> postprocessor_state;
   };
+
+  /// @p value as text that exact_value() turns back into the same double
+  /// (hexadecimal floating point), for postprocessor_state.
+  std::string
+  exact_text(const double value);
+
+  /// The double exact_text() wrote.
+  double
+  exact_value(const std::string &text);
 
   /**
    * Writes @p checkpoint and the locally owned entries of @p vectors

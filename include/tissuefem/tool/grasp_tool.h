@@ -6,6 +6,7 @@
 
 #include <tissuefem/solid/solid.h>
 #include <tissuefem/time/interface.h>
+#include <tissuefem/tool/interface.h>
 #include <tissuefem/tool/live_link.h>
 
 #include <fstream>
@@ -55,23 +56,32 @@ namespace tissuefem::tool
    * linearly between its steps to the haptic instant).
    */
   template <int dim>
-  class GraspTool
+  class GraspTool : public Interface<dim>
   {
   public:
+    /// Declares the 'Tool' subsection.
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    /// The tool the 'Tool' subsection of @p prm describes, or null if it
+    /// sets no 'Grasp point'.
+    static std::unique_ptr<Interface<dim>>
+    create(ParameterHandler &prm, const Triangulation<dim> &mesh);
+
     GraspTool(const ToolParameters &parameters, const Triangulation<dim> &mesh);
 
     /// Grasps or releases if the time has come (call before each step).
     /// Returns whether the constraints changed: the caller must have reset
     /// its linear solvers before and tell the integrator after.
     bool
-    due(const double time) const;
+    due(const double time) const override;
     void
-    act(const time::State &state, solid::Solid<dim> &solid);
+    act(const time::State &state, solid::Solid<dim> &solid) override;
 
     /// Opens tool_force.csv and haptic_force.csv in @p directory (process
     /// 0 writes); in live mode also starts listening for the client.
     void
-    open(const std::string &directory);
+    open(const std::string &directory) override;
 
     /**
      * Live mode: receives positions from the client until they cover
@@ -81,20 +91,20 @@ namespace tissuefem::tool
      * live_end() says why). Without a live client: true at once.
      */
     bool
-    synchronize(const double time);
+    synchronize(const double time) override;
     /// Why the live session ended (empty while it goes on).
     std::string
-    live_end() const;
+    live_end() const override;
 
     /// Records the force after a step (every process calls) and returns
     /// it (the force the tissue exerts on the tool, force units).
     Tensor<1, dim>
-    record(const time::State &state, solid::Solid<dim> &solid);
+    record(const time::State &state, solid::Solid<dim> &solid) override;
 
     /// The haptic report: updates, share within the budget, extrapolation
     /// error.
     std::string
-    summary() const;
+    summary() const override;
 
     /// The tool's displacement d(t) (length units).
     Tensor<1, dim>

@@ -1,0 +1,57 @@
+#pragma once
+
+#include <fstream>
+#include <string>
+
+namespace tissuefem::output
+{
+  /**
+   * The optional 'Output/Summary file': lines of results without timings or
+   * iteration counts, for regression tests. The run writes its header and
+   * postprocessors their lines; only process 0 writes, and each line is
+   * flushed whole, so an interrupted run leaves no partial line.
+   */
+  class SummaryFile
+  {
+  public:
+    /// @p path empty: no summary file (every call does nothing);
+    /// @p interval: steps between the per-step lines (due()).
+    SummaryFile(const std::string &path, const unsigned int interval);
+
+    /// Creates the file (before any other output file: if it cannot be
+    /// written, nothing is created). Process 0 only; throws InputError
+    /// naming 'Output/Summary file'.
+    void
+    open();
+
+    /// Reopens the file for appending (a restart; its length has been cut
+    /// back to the checkpoint's).
+    void
+    resume();
+
+    /// Whether there is a summary file on this process.
+    bool
+    active() const;
+
+    /// Whether step @p step gets per-step lines ('Summary interval').
+    bool
+    due(const unsigned int step) const;
+
+    /// Appends @p line (no trailing newline) and flushes.
+    void
+    line(const std::string &text);
+
+    /// The file's path (empty if none).
+    const std::string &
+    path() const;
+
+    /// Flushes what was written (before a checkpoint measures the file).
+    void
+    flush();
+
+  private:
+    std::string   file_path;
+    unsigned int  interval;
+    std::ofstream stream;
+  };
+} // namespace tissuefem::output

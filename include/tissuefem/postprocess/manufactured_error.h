@@ -1,0 +1,51 @@
+#pragma once
+
+#include <tissuefem/boundary/manufactured_solution.h>
+#include <tissuefem/postprocess/interface.h>
+
+namespace tissuefem::postprocess
+{
+  /**
+   * With 'Manufactured solution/Enabled': the error of every state against
+   * the exact displacement. run.txt gets the final L2 error (length units)
+   * and H1 seminorm error, their relative values, the largest L2 error over
+   * the steps, the L2(0,T; L2) error (sum over steps of dt ||u_h - u||^2)^(1/2)
+   * and, on hypercube meshes, the stress-jump error estimate and its
+   * effectivity; the screen a one-line report.
+   */
+  template <int dim>
+  class ManufacturedError : public Interface<dim>
+  {
+  public:
+    static void
+    declare_parameters(ParameterHandler &)
+    {
+    }
+
+    explicit ManufacturedError(ParameterHandler &)
+    {
+    }
+
+    void
+    initialize(const Context<dim> &context) override;
+
+    std::vector<std::string>
+    save() const override;
+
+    void
+    restore(const std::vector<std::string> &lines) override;
+
+    void
+    execute(const Step &step) override;
+
+    void
+    finish(const time::State &state,
+           const RunTotals   &totals,
+           output::RunRecord &record) override;
+
+  private:
+    const Context<dim> *context = nullptr;
+    double              max_l2 = 0, l2_time_integral = 0, last_time = 0;
+    typename boundary::ManufacturedSolution<dim>::Errors last{0, 0, 0, 0};
+  };
+} // namespace tissuefem::postprocess

@@ -1,0 +1,80 @@
+#pragma once
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/distributed/shared_tria.h>
+
+#include <tissuefem/boundary/boundary_conditions.h>
+#include <tissuefem/boundary/manufactured_solution.h>
+#include <tissuefem/geometry/geometry.h>
+#include <tissuefem/materials/material_set.h>
+#include <tissuefem/solid/discretization.h>
+#include <tissuefem/solid/solid.h>
+#include <tissuefem/tool/interface.h>
+
+#include <memory>
+#include <string>
+
+namespace tissuefem
+{
+  using namespace dealii;
+
+  /**
+   * Everything a parameter file says about the body and what acts on it:
+   * the mesh (Geometry), the materials, the loads and constraints (Boundary
+   * conditions, an optional manufactured solution, an optional tool), the
+   * discretization and the solid that assembles its operators. A scene is
+   * built from the parameters and validated once, in the constructor: after
+   * it, every input error has been reported (as an InputError naming the
+   * parameter) and no file has been written.
+   *
+   * The run loop (problems::Elasticity), the benchmarks, the studies'
+   * children (which run the elasticity problem) and the unit tests all build
+   * their scenes here, so a scene means the same thing everywhere. The mesh
+   * is shared by all MPI processes (parallel::shared::Triangulation,
+   * partitioned by METIS); each process assembles its own cells.
+   *
+   * Members are public and built in the order listed; each refers to those
+   * before it, so none may be replaced while a later one lives.
+   */
+  template <int dim>
+  class Scene
+  {
+  public:
+    /// Declares the subsections only a scene reads (Tool, Manufactured
+    /// solution); the others are shared with other problems and declared
+    /// by the application.
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    /**
+     * Builds and validates the scene @p prm describes. Relative mesh paths
+     * are taken from @p parameter_directory (the parameter file's
+     * directory; empty: the working directory).
+     */
+    explicit Scene(ParameterHandler  &prm,
+                   const std::string &parameter_directory = "");
+
+    /// The initial state: displacement and velocity of 'Boundary
+    /// conditions', with the Dirichlet values of t = 0 applied.
+    time::State
+    initial_state() const;
+
+    /// One line for the screen: cells, unknowns, element.
+    std::string
+    describe() const;
+
+    parallel::shared::Triangulation<dim>                 triangulation;
+    std::unique_ptr<materials::MaterialSet<dim>>         materials;
+    std::unique_ptr<boundary::BoundaryConditions<dim>>   boundary_conditions;
+    std::unique_ptr<boundary::ManufacturedSolution<dim>> manufactured;
+    std::unique_ptr<solid::Discretization<dim>>          discretization;
+    std::unique_ptr<solid::Solid<dim>>                   solid;
+    /// The tool 'Tool/Enabled' asks for, or null.
+    std::unique_ptr<tool::Interface<dim>> tool;
+
+  private:
+    /// Initial and boundary data must be finite where they are used.
+    void
+    check_initial_data() const;
+  };
+} // namespace tissuefem

@@ -1,0 +1,57 @@
+#include <tissuefem/base/input_error.h>
+#include <tissuefem/output/output_parameters.h>
+
+namespace tissuefem::output
+{
+  void
+  OutputParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Output");
+    prm.declare_entry("Directory",
+                      "output",
+                      Patterns::Anything(),
+                      "Directory (relative to the working directory) that "
+                      "receives solution-*.pvtu/.vtu, solution.pvd, "
+                      "statistics.csv, probes.csv and reactions.csv; created "
+                      "if missing.");
+    prm.declare_entry("Summary file",
+                      "",
+                      Patterns::Anything(),
+                      "If not empty: a file (relative to the working "
+                      "directory) receiving the probe displacements, "
+                      "reaction forces and final elastic energy (and the "
+                      "rest-shape report) without timings or iteration "
+                      "counts, for regression tests. Its directory must "
+                      "exist.");
+    prm.declare_entry("Summary interval",
+                      "1",
+                      Patterns::Integer(1),
+                      "Steps between rows of the summary file.");
+    prm.declare_entry(
+      "Checkpoint interval",
+      "0",
+      Patterns::Integer(0),
+      "Steps between checkpoints written to '<Directory>/checkpoint' "
+      "(atomically: a new one replaces the old one whole); 0: only when the "
+      "run is interrupted by SIGINT or SIGTERM. 'tissuefem FILE.prm "
+      "--restart <Directory>/checkpoint' continues the run; its outputs are "
+      "then those of an uninterrupted run, bit for bit except the "
+      "wall-clock columns of statistics.csv (same FILE.prm and "
+      "process count; quasistatic, backward Euler, and damped central "
+      "difference without active region; no tool or mesh adaptation).");
+    prm.leave_subsection();
+  }
+
+
+  void
+  OutputParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Output");
+    directory           = prm.get("Directory");
+    summary_file        = prm.get("Summary file");
+    summary_interval    = prm.get_integer("Summary interval");
+    checkpoint_interval = prm.get_integer("Checkpoint interval");
+    prm.leave_subsection();
+    require(!directory.empty(), "Output/Directory", "must not be empty");
+  }
+} // namespace tissuefem::output

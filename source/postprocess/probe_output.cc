@@ -1,0 +1,135 @@
+#include <tissuefem/base/parameter_tools.h>
+#include <tissuefem/output/output_files.h>
+#include <tissuefem/postprocess/probe_output.h>
+
+#include <sstream>
+
+namespace tissuefem::postprocess
+{
+  template <int dim>
+  void
+  ProbeOutput<dim>::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Output");
+    prm.declare_entry("Probe points",
+                      "",
+                      Patterns::Anything(),
+                      "Reference points 'x, y, z' separated by ';' at which "
+                      "the displacement goes to probes.csv every step "
+                      "(Dimension coordinates per point).");
+    prm.leave_subsection();
+  }
+
+
+  template <int dim>
+  ProbeOutput<dim>::ProbeOutput(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Output");
+    const std::string text = prm.get("Probe points");
+    prm.leave_subsection();
+    points = parse_points<dim>(text, "Output/Probe points");
+  }
+
+
+  template <int dim>
+  void
+  ProbeOutput<dim>::locate()
+  {
+    const auto &d = context->scene.solid->get_discretization();
+    probes        = std::make_unique<output::Probes<dim>>(points,
+                                                   *d.mapping,
+                                                   d.dof_handler,
+                                                   "Output/Probe points");
+  }
+
+
+  template <int dim>
+  void
+  ProbeOutput<dim>::initialize(const Context<dim> &c)
+  {
+    context = &c;
+    locate();
+    follow_mesh
+      = c.scene.solid->signals.changed.connect([this]() { locate(); });
+  }
+
+
+  template <int dim>
+  std::vector<std::string>
+  ProbeOutput<dim>::files() const
+  {
+    return {context->directory + "/probes.csv"};
+  }
+
+
+  template <int dim>
+  void
+  ProbeOutput<dim>::open()
+  {
+    if (!parallel_tools::is_root())
+      return;
+    static const char *coordinates[]   = {"X", "Y", "Z"};
+    static const char *displacements[] = {"ux", "uy", "uz"};
+    output::create_file(file, files()[0]);
+    file << "time,probe";
+    for (unsigned int d = 0; d < dim; ++d)
+      file << ',' << coordinates[d];
+    for (unsigned int d = 0; d < dim; ++d)
+      file << ',' << displacements[d];
+    file << '\n' << std::flush;
+  }
+
+
+  template <int dim>
+  void
+  ProbeOutput<dim>::restore(const std::vector<std::string> &)
+  {
+    if (parallel_tools::is_root())
+      output::append_to_file(file, files()[0]);
+  }
+
+
+  template <int dim>
+  void
+  ProbeOutput<dim>::execute(const Step &step)
+  {
+    // Point values need the ghost entries of the probes' cells.
+    VectorType u;
+    context->scene.solid->get_discretization().initialize_vector(u, true);
+    u                 = step.state.u;
+    const auto values = probes->evaluate(u);
+    if (!parallel_tools::is_root())
+      return;
+    const double time      = step.state.time;
+    const bool   summarize = context->summary.due(step.number);
+    for (unsigned int p = 0; p < values.size(); ++p)
+      {
+        std::ostringstream row;
+        row << std::setprecision(10) << time << ',' << p;
+        for (unsigned int c = 0; c < dim; ++c)
+          row << ',' << points[p][c];
+        for (unsigned int c = 0; c < dim; ++c)
+          row << ',' << values[p][c];
+        file << row.str() << '\n';
+        if (summarize)
+          {
+            std::ostringstream line;
+            line << std::setprecision(8) << "t = " << time << " probe " << p
+                 << " u =";
+            for (unsigned int c = 0; c < dim; ++c)
+              line << ' ' << values[p][c];
+            context->summary.line(line.str());
+          }
+      }
+    file << std::flush;
+  }
+
+  template class ProbeOutput<1>;
+  template class ProbeOutput<2>;
+  template class ProbeOutput<3>;
+
+  TISSUEFEM_REGISTER_POSTPROCESSOR(
+    ProbeOutput,
+    "probes",
+    "probes.csv: the displacement at 'Probe points' every step.")
+} // namespace tissuefem::postprocess

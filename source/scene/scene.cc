@@ -1,0 +1,140 @@
+#include <tissuefem/base/input_error.h>
+#include <tissuefem/base/parallel.h>
+#include <tissuefem/base/parameter_tools.h>
+#include <tissuefem/scene/scene.h>
+#include <tissuefem/time/interface.h>
+
+#include <sstream>
+
+namespace tissuefem
+{
+  namespace
+  {
+    /// Whether the run integrates in time (a manufactured solution then
+    /// adds the inertial term to its body force).
+    bool
+    integrates_in_time(ParameterHandler &prm)
+    {
+      time::TimeParameters time_parameters;
+      time_parameters.parse_parameters(prm);
+      return time_parameters.integrator != "quasistatic";
+    }
+  } // namespace
+
+
+  template <int dim>
+  void
+  Scene<dim>::declare_parameters(ParameterHandler &prm)
+  {
+    tool::ToolRegistry<dim>::instance().declare_parameters(prm);
+    boundary::ManufacturedParameters::declare_parameters(prm);
+  }
+
+
+  template <int dim>
+  Scene<dim>::Scene(ParameterHandler  &prm,
+                    const std::string &parameter_directory)
+      : triangulation(parallel_tools::communicator(),
+                      Triangulation<dim>::limit_level_difference_at_vertices,
+                      /*allow_artificial_cells=*/false,
+                      parallel::shared::Triangulation<dim>::partition_metis)
+  {
+    geometry::GeometryParameters geometry_parameters;
+    geometry_parameters.parse_parameters(prm);
+    geometry_parameters.resolve_relative_to(parameter_directory);
+    geometry::build_triangulation(geometry_parameters, triangulation);
+
+    materials::MaterialParameters material_parameters;
+    material_parameters.parse_parameters(prm);
+    materials
+      = std::make_unique<materials::MaterialSet<dim>>(material_parameters, prm);
+    materials->check_covers(triangulation);
+
+    boundary::BoundaryParameters boundary_parameters;
+    boundary_parameters.parse_parameters(prm);
+    boundary_conditions = std::make_unique<boundary::BoundaryConditions<dim>>(
+      boundary_parameters);
+    boundary_conditions->check_boundary_ids(triangulation);
+
+    // Every registered kind of tool the file asks for.
+    for (const auto &[name, entry] : tool::ToolRegistry<dim>::instance().all())
+      if (auto t = entry.create(prm, triangulation))
+        {
+          require(!tool,
+                  "Tool",
+                  "asks for more than one tool ('" + name
+                    + "' and another); a scene holds one tool");
+          tool = std::move(t);
+        }
+
+    boundary::ManufacturedParameters manufactured_parameters;
+    manufactured_parameters.parse_parameters(prm);
+    if (manufactured_parameters.enabled)
+      {
+        require(!tool,
+                "Manufactured solution/Enabled",
+                "cannot be combined with a tool");
+        manufactured = std::make_unique<boundary::ManufacturedSolution<dim>>(
+          manufactured_parameters,
+          *materials,
+          triangulation,
+          integrates_in_time(prm));
+        manufactured->impose_on(*boundary_conditions);
+      }
+
+    solid::FiniteElementParameters fe_parameters;
+    fe_parameters.parse_parameters(prm);
+    discretization = std::make_unique<solid::Discretization<dim>>(triangulation,
+                                                                  fe_parameters,
+                                                                  dim);
+    solid          = std::make_unique<solid::Solid<dim>>(*discretization,
+                                                *materials,
+                                                *boundary_conditions);
+    check_initial_data();
+  }
+
+
+  template <int dim>
+  void
+  Scene<dim>::check_initial_data() const
+  {
+    VectorType u, v;
+    solid->initial_state(u, v);
+    require(all_finite(u),
+            "Boundary conditions/Initial displacement",
+            "is not finite at some node");
+    require(all_finite(v),
+            "Boundary conditions/Initial velocity",
+            "is not finite at some node");
+    solid->apply_dirichlet_values(0., u);
+    require(all_finite(u),
+            "Boundary conditions/Dirichlet",
+            "is not finite at some boundary node at t = 0");
+  }
+
+
+  template <int dim>
+  time::State
+  Scene<dim>::initial_state() const
+  {
+    time::State state;
+    solid->initial_state(state.u, state.v);
+    solid->apply_dirichlet_values(0., state.u);
+    return state;
+  }
+
+
+  template <int dim>
+  std::string
+  Scene<dim>::describe() const
+  {
+    std::ostringstream s;
+    s << triangulation.n_active_cells() << " cells, " << solid->n_dofs()
+      << " unknowns, element " << discretization->fe->get_name();
+    return s.str();
+  }
+
+  template class Scene<1>;
+  template class Scene<2>;
+  template class Scene<3>;
+} // namespace tissuefem
