@@ -19,6 +19,9 @@
 
 #include <filesystem>
 #include <iostream>
+#include <optional>
+#include <string>
+#include <vector>
 
 #ifndef TISSUEFEM_VERSION
 #define TISSUEFEM_VERSION "unknown"
@@ -167,121 +170,150 @@ namespace tissuefem
            "fails, 4 for any other error, 128 + N after signal N (130 for\n"
            "SIGINT, 143 for SIGTERM).\n";
     }
+
+    /// What the command line asks for.
+    struct CommandLine
+    {
+      std::vector<std::string> overrides;
+      std::string              file, restart;
+      bool                     validate_only = false, check_material = false;
+      /// The exit status when an option was answered at once (--help,
+      /// --version, --print-parameters): nothing more is to be done.
+      std::optional<int> finished;
+    };
+
+    /// Reads the options in order, so that an option answered at once
+    /// ends the reading there (as a bad option before it throws first).
+    CommandLine
+    read_command_line(const std::vector<std::string> &args)
+    {
+      CommandLine line;
+      for (unsigned int i = 0; i < args.size(); ++i)
+        {
+          const std::string &a = args[i];
+          if (a == "--help" || a == "-h")
+            {
+              print_usage(parallel_tools::screen());
+              line.finished = 0;
+              return line;
+            }
+          if (a == "--version")
+            {
+              parallel_tools::screen()
+                << "tissuefem " << TISSUEFEM_VERSION << std::endl;
+              line.finished = 0;
+              return line;
+            }
+          if (a == "--print-parameters")
+            {
+              ParameterHandler prm;
+              declare_all_parameters(prm);
+              prm.print_parameters(parallel_tools::screen(),
+                                   ParameterHandler::PRM);
+              line.finished = 0;
+              return line;
+            }
+          if (a == "--threads")
+            {
+              if (i + 1 == args.size())
+                throw InputError("--threads needs a number >= 1");
+              const std::string n = args[++i];
+              if (n.empty()
+                  || n.find_first_not_of("0123456789") != std::string::npos
+                  || n.size() > 4 || std::stoi(n) < 1)
+                throw InputError("--threads '" + n
+                                 + "': expected a number >= 1");
+              MultithreadInfo::set_thread_limit(std::stoi(n));
+              continue;
+            }
+          if (a == "--restart")
+            {
+              if (i + 1 == args.size())
+                throw InputError("--restart needs a checkpoint directory");
+              line.restart = args[++i];
+              continue;
+            }
+          if (a == "--validate")
+            line.validate_only = true;
+          else if (a == "--check-material")
+            line.check_material = true;
+          else if (a == "--set")
+            {
+              if (i + 1 == args.size())
+                throw InputError("--set needs 'Subsection/Name=value'");
+              line.overrides.push_back(args[++i]);
+            }
+          else if (a.rfind("--set=", 0) == 0)
+            line.overrides.push_back(a.substr(6));
+          else if (a.rfind("--", 0) == 0)
+            throw InputError("unknown option '" + a + "' (see --help)");
+          else if (line.file.empty())
+            line.file = a;
+          else
+            throw InputError("more than one parameter file given ('" + line.file
+                             + "', '" + a + "')");
+        }
+      return line;
+    }
+
+    /// Reads the parameter file and checks, validates or runs what it
+    /// describes; returns the exit status. Errors are thrown.
+    int
+    run_parameter_file(const CommandLine &line)
+    {
+      if (line.file.empty())
+        {
+          if (parallel_tools::is_root())
+            print_usage(std::cerr);
+          return 2;
+        }
+
+      ParameterHandler prm;
+      declare_all_parameters(prm);
+      read_parameters(prm, line.file, line.overrides);
+      if (line.check_material)
+        {
+          const int  dim = prm.get_integer("Dimension");
+          const bool ok  = dim == 1   ? check_materials<1>(prm)
+                           : dim == 2 ? check_materials<2>(prm)
+                                      : check_materials<3>(prm);
+          return ok ? 0 : 3;
+        }
+      problems::RunContext context;
+      context.parameter_directory
+        = std::filesystem::path(line.file).parent_path().string();
+      context.restart_directory = line.restart;
+      auto problem
+        = problems::ProblemRegistry::instance().create(prm.get("Problem"),
+                                                       prm,
+                                                       context);
+      if (line.validate_only)
+        {
+          problem->setup();
+          parallel_tools::screen()
+            << "tissuefem: '" << line.file << "' is valid" << std::endl;
+          return 0;
+        }
+      parallel_tools::screen()
+        << "tissuefem: " << parallel_tools::n_processes()
+        << " MPI process(es), " << MultithreadInfo::n_threads()
+        << " thread(s) each" << std::endl;
+      problem->run();
+      return 0;
+    }
   } // namespace
 
 
   int
   run_command_line(int argc, char **argv)
   {
-    std::vector<std::string> args(argv + 1, argv + argc);
-    std::vector<std::string> overrides;
-    std::string              file;
-    bool                     validate_only  = false;
-    bool                     check_material = false;
-    std::string              restart;
+    const std::vector<std::string> args(argv + 1, argv + argc);
     try
       {
-        for (unsigned int i = 0; i < args.size(); ++i)
-          {
-            const std::string &a = args[i];
-            if (a == "--help" || a == "-h")
-              {
-                print_usage(parallel_tools::screen());
-                return 0;
-              }
-            if (a == "--version")
-              {
-                parallel_tools::screen()
-                  << "tissuefem " << TISSUEFEM_VERSION << std::endl;
-                return 0;
-              }
-            if (a == "--print-parameters")
-              {
-                ParameterHandler prm;
-                declare_all_parameters(prm);
-                prm.print_parameters(parallel_tools::screen(),
-                                     ParameterHandler::PRM);
-                return 0;
-              }
-            if (a == "--threads")
-              {
-                if (i + 1 == args.size())
-                  throw InputError("--threads needs a number >= 1");
-                const std::string n = args[++i];
-                if (n.empty()
-                    || n.find_first_not_of("0123456789") != std::string::npos
-                    || n.size() > 4 || std::stoi(n) < 1)
-                  throw InputError("--threads '" + n
-                                   + "': expected a number >= 1");
-                MultithreadInfo::set_thread_limit(std::stoi(n));
-                continue;
-              }
-            if (a == "--restart")
-              {
-                if (i + 1 == args.size())
-                  throw InputError("--restart needs a checkpoint directory");
-                restart = args[++i];
-                continue;
-              }
-            if (a == "--validate")
-              validate_only = true;
-            else if (a == "--check-material")
-              check_material = true;
-            else if (a == "--set")
-              {
-                if (i + 1 == args.size())
-                  throw InputError("--set needs 'Subsection/Name=value'");
-                overrides.push_back(args[++i]);
-              }
-            else if (a.rfind("--set=", 0) == 0)
-              overrides.push_back(a.substr(6));
-            else if (a.rfind("--", 0) == 0)
-              throw InputError("unknown option '" + a + "' (see --help)");
-            else if (file.empty())
-              file = a;
-            else
-              throw InputError("more than one parameter file given ('" + file
-                               + "', '" + a + "')");
-          }
-        if (file.empty())
-          {
-            if (parallel_tools::is_root())
-              print_usage(std::cerr);
-            return 2;
-          }
-
-        ParameterHandler prm;
-        declare_all_parameters(prm);
-        read_parameters(prm, file, overrides);
-        if (check_material)
-          {
-            const int  dim = prm.get_integer("Dimension");
-            const bool ok  = dim == 1   ? check_materials<1>(prm)
-                             : dim == 2 ? check_materials<2>(prm)
-                                        : check_materials<3>(prm);
-            return ok ? 0 : 3;
-          }
-        problems::RunContext context;
-        context.parameter_directory
-          = std::filesystem::path(file).parent_path().string();
-        context.restart_directory = restart;
-        auto problem
-          = problems::ProblemRegistry::instance().create(prm.get("Problem"),
-                                                         prm,
-                                                         context);
-        if (validate_only)
-          {
-            problem->setup();
-            parallel_tools::screen()
-              << "tissuefem: '" << file << "' is valid" << std::endl;
-            return 0;
-          }
-        parallel_tools::screen()
-          << "tissuefem: " << parallel_tools::n_processes()
-          << " MPI process(es), " << MultithreadInfo::n_threads()
-          << " thread(s) each" << std::endl;
-        problem->run();
-        return 0;
+        const CommandLine line = read_command_line(args);
+        if (line.finished)
+          return *line.finished;
+        return run_parameter_file(line);
       }
     catch (const Interrupted &e)
       {

@@ -200,17 +200,19 @@ namespace tissuefem::geometry
       return keys;
     }
 
-    template <int dim>
-    void
-    read_vtu_mesh(const std::string &file_name, Triangulation<dim> &tria)
+    /// The arrays of the file's one <Piece>, as numbers: coordinates (x, y,
+    /// z per point), the cells' connectivity, offsets and VTK types, and
+    /// their ids (empty if the file has none).
+    struct PieceData
     {
-      std::ifstream in(file_name, std::ios::binary);
-      if (!in)
-        throw InputError("Mesh file '" + file_name + "' cannot be opened");
-      std::ostringstream buffer;
-      buffer << in.rdbuf();
-      const Scanner s{file_name, buffer.str()};
+      std::size_t         n_points = 0, n_cells = 0;
+      std::vector<double> xyz, connectivity, offsets, cell_types, ids;
+    };
 
+    /// Checks the file's structure and reads the arrays of its piece.
+    PieceData
+    read_piece(const Scanner &s)
+    {
       if (s.find("VTKFile", 0, npos).attribute("type") != "UnstructuredGrid")
         s.fail("is no VTK XML UnstructuredGrid file");
       if (s.find("AppendedData", 0, npos).found())
@@ -218,9 +220,10 @@ namespace tissuefem::geometry
       const Element piece = s.find("Piece", 0, npos);
       if (!piece.found() || s.find("Piece", piece.end, npos).found())
         s.fail("must hold exactly one <Piece>");
-      const std::size_t n_points = s.count(piece, "NumberOfPoints");
-      const std::size_t n_cells  = s.count(piece, "NumberOfCells");
-      const auto        section  = [&](const std::string &name) {
+      PieceData data;
+      data.n_points      = s.count(piece, "NumberOfPoints");
+      data.n_cells       = s.count(piece, "NumberOfCells");
+      const auto section = [&](const std::string &name) {
         return s.find(name, piece.content_begin, piece.content_end);
       };
 
@@ -230,24 +233,23 @@ namespace tissuefem::geometry
       if (!points.found() || !coordinates.found()
           || coordinates.attribute("NumberOfComponents") != "3")
         s.fail("has no <Points> DataArray with NumberOfComponents=\"3\"");
-      const std::vector<double> xyz
-        = s.numbers(coordinates, "Points", 3 * n_points, false);
+      data.xyz = s.numbers(coordinates, "Points", 3 * data.n_points, false);
 
-      std::vector<double> arrays[3];
-      const char         *names[3]      = {"connectivity", "offsets", "types"};
-      const Element       cells_section = section("Cells");
+      std::vector<double> *arrays[3]
+        = {&data.connectivity, &data.offsets, &data.cell_types};
+      const char   *names[3]      = {"connectivity", "offsets", "types"};
+      const Element cells_section = section("Cells");
       for (unsigned int i = 0; i < 3; ++i)
         {
           const Element array = s.find_array(cells_section, names[i]);
           if (!cells_section.found() || !array.found())
             s.fail(std::string("has no <Cells> DataArray Name=\"") + names[i]
                    + "\"");
-          arrays[i] = s.numbers(array, names[i], i ? n_cells : npos, true);
+          *arrays[i]
+            = s.numbers(array, names[i], i ? data.n_cells : npos, true);
         }
-      const auto &[connectivity, offsets, cell_types] = arrays;
 
-      std::vector<double> ids;
-      const Element       cell_data = section("CellData");
+      const Element cell_data = section("CellData");
       for (const std::string name :
            {"MaterialIds", "material_id", "materialID", "gmsh:physical"})
         if (const Element array = s.find_array(cell_data, name);
@@ -255,53 +257,92 @@ namespace tissuefem::geometry
           {
             if (array.attribute("type").find("Int") == npos)
               s.fail("CellData array '" + name + "' must have an integer type");
-            ids = s.numbers(array, name, n_cells, true);
+            data.ids = s.numbers(array, name, data.n_cells, true);
             break;
           }
-      const auto id = [&](const std::size_t c) {
-        if (!ids.empty() && (ids[c] < 0 || ids[c] > 254))
-          s.fail("cell " + std::to_string(c) + " has id " + str(ids[c])
-                 + ", but ids must be 0..254");
-        return ids.empty() ? 0u : static_cast<unsigned int>(ids[c]);
-      };
+      return data;
+    }
 
-      // A 2D mesh comes with z; it must not hide a curved surface.
-      std::vector<Point<dim>> vertices(n_points);
-      double                  extent = 0;
-      for (std::size_t i = 0; i < n_points; ++i)
+    /// The id of cell @p c (material or boundary id; 0 without ids).
+    unsigned int
+    cell_id(const Scanner &s, const PieceData &data, const std::size_t c)
+    {
+      const std::vector<double> &ids = data.ids;
+      if (!ids.empty() && (ids[c] < 0 || ids[c] > 254))
+        s.fail("cell " + std::to_string(c) + " has id " + str(ids[c])
+               + ", but ids must be 0..254");
+      return ids.empty() ? 0u : static_cast<unsigned int>(ids[c]);
+    }
+
+    /// The vertices in @p dim coordinates. A 2D mesh comes with z; it must
+    /// not hide a curved surface.
+    template <int dim>
+    std::vector<Point<dim>>
+    read_vertices(const Scanner &s, const PieceData &data)
+    {
+      const std::vector<double> &xyz = data.xyz;
+      std::vector<Point<dim>>    vertices(data.n_points);
+      double                     extent = 0;
+      for (std::size_t i = 0; i < data.n_points; ++i)
         for (unsigned int d = 0; d < dim; ++d)
           {
             vertices[i][d] = xyz[3 * i + d];
             extent = std::max(extent, std::abs(xyz[3 * i + d] - xyz[d]));
           }
-      for (std::size_t i = 0; dim == 2 && i < n_points; ++i)
+      for (std::size_t i = 0; dim == 2 && i < data.n_points; ++i)
         if (std::abs(xyz[3 * i + 2] - xyz[2]) > 1e-10 * extent)
           s.fail("point " + std::to_string(i) + " has another z than point 0, "
                  + "but a 2D mesh must lie in a plane z = const");
+      return vertices;
+    }
 
+    /// The point indices of cell @p c in VTK's order, checked against the
+    /// offsets and the number of points.
+    std::vector<unsigned int>
+    vtk_cell_vertices(const Scanner &s, const PieceData &data, std::size_t c)
+    {
+      const std::vector<double> &connectivity = data.connectivity;
+      const std::vector<double> &offsets      = data.offsets;
+      const double               begin        = c == 0 ? 0 : offsets[c - 1];
+      if (offsets[c] < begin || offsets[c] > connectivity.size()
+          || (c + 1 == data.n_cells && offsets[c] != connectivity.size()))
+        s.fail("offset " + str(offsets[c]) + " of cell " + std::to_string(c)
+               + " does not fit " + std::to_string(connectivity.size())
+               + " connectivity entries");
+      std::vector<unsigned int> vtk;
+      for (std::size_t k = begin; k < offsets[c]; ++k)
+        {
+          if (connectivity[k] < 0 || connectivity[k] >= data.n_points)
+            s.fail("cell " + std::to_string(c) + " refers to point "
+                   + str(connectivity[k]) + ", but the file has "
+                   + std::to_string(data.n_points) + " points");
+          vtk.push_back(connectivity[k]);
+        }
+      return vtk;
+    }
+
+    /// The cells of the mesh's dimension, and the faces tagged with ids
+    /// (with the index of the file's cell each came from).
+    template <int dim>
+    struct CellLists
+    {
       std::vector<CellData<dim>>                             cells;
       std::vector<std::pair<std::size_t, CellData<dim - 1>>> faces;
       unsigned int                                           n_cubes = 0;
-      for (std::size_t c = 0; c < n_cells; ++c)
-        {
-          const double begin = c == 0 ? 0 : offsets[c - 1];
-          if (offsets[c] < begin || offsets[c] > connectivity.size()
-              || (c + 1 == n_cells && offsets[c] != connectivity.size()))
-            s.fail("offset " + str(offsets[c]) + " of cell " + std::to_string(c)
-                   + " does not fit " + std::to_string(connectivity.size())
-                   + " connectivity entries");
-          std::vector<unsigned int> vtk;
-          for (std::size_t k = begin; k < offsets[c]; ++k)
-            {
-              if (connectivity[k] < 0 || connectivity[k] >= n_points)
-                s.fail("cell " + std::to_string(c) + " refers to point "
-                       + str(connectivity[k]) + ", but the file has "
-                       + std::to_string(n_points) + " points");
-              vtk.push_back(connectivity[k]);
-            }
+    };
 
-          const int type = cell_types[c];
-          const int cell_dim
+    /// Sorts the file's cells into cells and tagged faces; lower-
+    /// dimensional cells without ids are skipped.
+    template <int dim>
+    CellLists<dim>
+    read_cells(const Scanner &s, const PieceData &data)
+    {
+      CellLists<dim> lists;
+      for (std::size_t c = 0; c < data.n_cells; ++c)
+        {
+          const std::vector<unsigned int> vtk  = vtk_cell_vertices(s, data, c);
+          const int                       type = data.cell_types[c];
+          const int                       cell_dim
             = type >= 0 && type <= 25 ? vtk_dimensions[type] - '0' : -1;
           const std::string what
             = "cell " + std::to_string(c) + " (VTK type " + str(type) + ")";
@@ -310,7 +351,7 @@ namespace tissuefem::geometry
                    + "D mesh");
           const bool cube = type == 9 || type == 12;
           const bool used = cell_dim == dim
-                            || (!ids.empty() && cell_dim == dim - 1
+                            || (!data.ids.empty() && cell_dim == dim - 1
                                 && (dim == 2 ? type == 3 : type == 5 || cube));
           if (cell_dim == dim && type != (dim == 3 ? 10 : 5)
               && type != (dim == 3 ? 12 : 9))
@@ -322,30 +363,39 @@ namespace tissuefem::geometry
             s.fail(what + " has " + std::to_string(vtk.size()) + " points");
           if (cell_dim == dim)
             {
-              cells.emplace_back(vtk.size());
-              cells.back().vertices    = to_deal_ii_order(vtk, cube);
-              cells.back().material_id = id(c);
-              n_cubes += cube;
+              lists.cells.emplace_back(vtk.size());
+              lists.cells.back().vertices    = to_deal_ii_order(vtk, cube);
+              lists.cells.back().material_id = cell_id(s, data, c);
+              lists.n_cubes += cube;
             }
           else if (used)
             {
-              faces.emplace_back(c, CellData<dim - 1>(vtk.size()));
-              faces.back().second.vertices    = to_deal_ii_order(vtk, cube);
-              faces.back().second.boundary_id = id(c);
+              lists.faces.emplace_back(c, CellData<dim - 1>(vtk.size()));
+              lists.faces.back().second.vertices = to_deal_ii_order(vtk, cube);
+              lists.faces.back().second.boundary_id = cell_id(s, data, c);
             }
         }
-      if (cells.empty())
+      if (lists.cells.empty())
         s.fail("holds no " + std::to_string(dim) + "D cells");
-      if (n_cubes != 0 && n_cubes != cells.size())
+      if (lists.n_cubes != 0 && lists.n_cubes != lists.cells.size())
         s.fail("mixes simplices and hypercubes, which deal.II cannot join "
                "without wedges or pyramids");
+      return lists;
+    }
 
-      // deal.II needs positive Jacobians, which meshing tools do not always
-      // produce; swapping two vertices turns a simplex inside out.
+    /// deal.II needs positive Jacobians, which meshing tools do not always
+    /// produce; swapping two vertices turns a simplex inside out.
+    /// Hypercubes are left to deal.II's own repair.
+    template <int dim>
+    void
+    reorient_simplices(const Scanner                 &s,
+                       const std::vector<Point<dim>> &vertices,
+                       CellLists<dim>                &lists)
+    {
       unsigned int n_reoriented = 0;
-      for (std::size_t c = 0; c < cells.size() && n_cubes == 0; ++c)
+      for (std::size_t c = 0; c < lists.cells.size() && lists.n_cubes == 0; ++c)
         {
-          std::vector<unsigned int> &v = cells[c].vertices;
+          std::vector<unsigned int> &v = lists.cells[c].vertices;
           Tensor<2, dim>             edges;
           double                     length = 0;
           for (unsigned int d = 0; d < dim; ++d)
@@ -365,18 +415,27 @@ namespace tissuefem::geometry
         }
       if (n_reoriented > 0)
         parallel_tools::screen()
-          << "Mesh file '" << file_name << "': " << n_reoriented
+          << "Mesh file '" << s.file_name << "': " << n_reoriented
           << " cells had their vertices in inverted order and were "
              "reoriented (a safe repair: the cell is the same)."
           << std::endl;
-      // deal.II's ids belong to boundary faces; a file may also tag faces
-      // between cells (e.g. material interfaces), which it cannot hold.
+    }
+
+    /// The tagged faces that lie on the boundary. deal.II's ids belong to
+    /// boundary faces; a file may also tag faces between cells (e.g.
+    /// material interfaces), which it cannot hold: those are dropped.
+    template <int dim>
+    SubCellData
+    boundary_faces(const Scanner &s, const CellLists<dim> &lists)
+    {
       std::map<std::vector<unsigned int>, unsigned int> n_adjacent;
-      for (std::size_t c = 0; c < cells.size() && !faces.empty(); ++c)
-        for (const auto &key : face_keys<dim>(cells[c].vertices, n_cubes))
+      for (std::size_t c = 0; c < lists.cells.size() && !lists.faces.empty();
+           ++c)
+        for (const auto &key :
+             face_keys<dim>(lists.cells[c].vertices, lists.n_cubes))
           ++n_adjacent[key];
       SubCellData subcell_data;
-      for (const auto &[c, face] : faces)
+      for (const auto &[c, face] : lists.faces)
         {
           std::vector<unsigned int> key = face.vertices;
           std::sort(key.begin(), key.end());
@@ -391,16 +450,36 @@ namespace tissuefem::geometry
           else
             subcell_data.boundary_quads.push_back(face);
         }
+      return subcell_data;
+    }
 
-      GridTools::delete_unused_vertices(vertices, cells, subcell_data);
+    template <int dim>
+    void
+    read_vtu_mesh(const std::string &file_name, Triangulation<dim> &tria)
+    {
+      std::ifstream in(file_name, std::ios::binary);
+      if (!in)
+        throw InputError("Mesh file '" + file_name + "' cannot be opened");
+      std::ostringstream buffer;
+      buffer << in.rdbuf();
+      const Scanner s{file_name, buffer.str()};
+
+      const PieceData         data     = read_piece(s);
+      std::vector<Point<dim>> vertices = read_vertices<dim>(s, data);
+      CellLists<dim>          lists    = read_cells<dim>(s, data);
+      reorient_simplices(s, vertices, lists);
+      SubCellData subcell_data = boundary_faces(s, lists);
+
+      GridTools::delete_unused_vertices(vertices, lists.cells, subcell_data);
       try
         {
-          if (n_cubes != 0)
+          if (lists.n_cubes != 0)
             {
-              GridTools::invert_all_negative_measure_cells(vertices, cells);
-              GridTools::consistently_order_cells(cells);
+              GridTools::invert_all_negative_measure_cells(vertices,
+                                                           lists.cells);
+              GridTools::consistently_order_cells(lists.cells);
             }
-          tria.create_triangulation(vertices, cells, subcell_data);
+          tria.create_triangulation(vertices, lists.cells, subcell_data);
         }
       catch (const ExceptionBase &e)
         {

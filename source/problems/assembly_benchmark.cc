@@ -252,23 +252,24 @@ namespace tissuefem::problems
   }
 
 
-  template <int dim>
-  void
-  AssemblyBenchmark<dim>::compare_with_floor(
-    solid::Discretization<dim>        &discretization,
-    boundary::BoundaryConditions<dim> &boundary_conditions,
-    const VectorType                  &u) const
+  namespace
   {
-    auto        &screen = parallel_tools::screen();
-    const double n_cells
-      = discretization.dof_handler.get_triangulation().n_active_cells();
-    materials::MaterialSet<dim> materials(material_parameters, prm);
-    solid::Solid<dim>    solid(discretization, materials, boundary_conditions);
-    FloorKernel<dim>     floor(discretization, materials);
-    const Vector<double> u_all(u);
-    // Microseconds per cell of the whole mesh: the slowest process's best
-    // wall time over the repetitions, divided by all cells.
-    auto time = [&](const auto &work) {
+    /// One line of the floor comparison: microseconds per cell.
+    struct FloorRow
+    {
+      std::string name;
+      double      residual, jacobian;
+    };
+
+    /// Microseconds per cell of the whole mesh (@p n_cells) that @p work
+    /// takes: the slowest process's best wall time over the repetitions,
+    /// divided by all cells.
+    template <typename Work>
+    double
+    time_per_cell(const Work        &work,
+                  const unsigned int repetitions,
+                  const double       n_cells)
+    {
       double best = 1e300;
       for (unsigned int r = 0; r < repetitions; ++r)
         {
@@ -283,17 +284,103 @@ namespace tissuefem::problems
         }
       return 1e6 * Utilities::MPI::max(best, parallel_tools::communicator())
              / n_cells;
+    }
+
+    /// max_i |a_i - b_i| and max_i |b_i| over the locally owned entries.
+    template <typename VectorA, typename VectorB>
+    std::pair<double, double>
+    largest_difference(const IndexSet &owned,
+                       const VectorA  &a,
+                       const VectorB  &b)
+    {
+      double difference = 0, largest = 0;
+      for (const auto i : owned)
+        {
+          difference = std::max(difference, std::abs(a[i] - b[i]));
+          largest    = std::max(largest, std::abs(b[i]));
+        }
+      return {difference, largest};
+    }
+
+    /// The table of compare_with_floor(): each row's times and their
+    /// ratios to the first row's, and the measured update against the
+    /// target. @p difference is the quadrature-loop kernel's relative
+    /// difference, @p floor_difference the fused kernel's (< 0: none).
+    void
+    print_floor_table(const std::vector<FloorRow> &rows,
+                      const double                 floor_difference,
+                      const double                 difference,
+                      const double                 n_cells,
+                      const unsigned int           all_threads,
+                      const std::size_t            all_thread_row,
+                      const double                 target_ms)
+    {
+      auto &screen = parallel_tools::screen();
+      if (floor_difference >= 0)
+        screen << "True floor: forces differ from tissuefem's by "
+               << std::scientific << std::setprecision(1) << floor_difference
+               << " relative" << std::defaultfloat << std::setprecision(6)
+               << "\n";
+      screen << "Against the first kernel (internal forces only; "
+             << parallel_tools::n_processes()
+             << " MPI process(es); us per cell "
+             << "of the whole mesh; ";
+      if (parallel_tools::n_processes() == 1)
+        screen << "the quadrature-loop kernel's residual differs from "
+                  "tissuefem's by "
+               << std::scientific << std::setprecision(1) << difference
+               << " relative):\n";
+      else
+        screen << "each process's single-thread kernels sum only its own "
+                  "cells):\n";
+      screen << std::defaultfloat << std::setw(42) << "" << std::setw(14)
+             << "residual" << std::setw(10) << "ratio" << std::setw(22)
+             << "residual + Jacobian" << std::setw(10) << "ratio"
+             << "\n";
+      for (const auto &row : rows)
+        screen << std::setw(42) << row.name << std::fixed
+               << std::setprecision(2) << std::setw(14) << row.residual
+               << std::setw(10) << row.residual / rows[0].residual
+               << std::setw(22) << row.jacobian << std::setw(10)
+               << row.jacobian / rows[0].jacobian << std::defaultfloat
+               << std::setprecision(6) << "\n";
+      if (target_ms > 0)
+        {
+          const double update_ms
+            = rows[all_thread_row].residual * n_cells / 1e3;
+          screen << "One internal-force update of the whole mesh (" << n_cells
+                 << " cells): " << std::setprecision(3) << update_ms
+                 << " ms with " << all_threads << " thread(s) (" << rows[0].name
+                 << ": " << rows[0].residual * n_cells / 1e3 << " ms); target "
+                 << target_ms
+                 << " ms: measured / target = " << update_ms / target_ms
+                 << std::setprecision(6) << "\n";
+        }
+    }
+  } // namespace
+
+
+  template <int dim>
+  void
+  AssemblyBenchmark<dim>::compare_with_floor(
+    solid::Discretization<dim>        &discretization,
+    boundary::BoundaryConditions<dim> &boundary_conditions,
+    const VectorType                  &u) const
+  {
+    const double n_cells
+      = discretization.dof_handler.get_triangulation().n_active_cells();
+    materials::MaterialSet<dim> materials(material_parameters, prm);
+    solid::Solid<dim>    solid(discretization, materials, boundary_conditions);
+    FloorKernel<dim>     floor(discretization, materials);
+    const Vector<double> u_all(u);
+    auto                 time = [&](const auto &work) {
+      return time_per_cell(work, repetitions, n_cells);
     };
     VectorType residual, zero;
     discretization.initialize_vector(zero);
     const unsigned int all_threads = MultithreadInfo::n_threads();
 
-    struct Row
-    {
-      std::string name;
-      double      residual, jacobian;
-    };
-    std::vector<Row> rows;
+    std::vector<FloorRow> rows;
     // The true floor where it exists: the fused neo-Hookean kernel of
     // linear simplices (neo_hookean_floor.h).
     double floor_difference = -1;
@@ -309,16 +396,11 @@ namespace tissuefem::problems
                           time([&] { fused.assemble(u_all, false); }),
                           time([&] { fused.assemble(u_all, true); })});
           solid.internal_force(u, residual);
-          double largest   = 0;
-          floor_difference = 0;
-          for (const auto i : discretization.locally_owned)
-            {
-              floor_difference
-                = std::max(floor_difference,
-                           std::abs(residual[i] - fused.residual()[i]));
-              largest = std::max(largest, std::abs(fused.residual()[i]));
-            }
-          floor_difference /= largest;
+          const auto [difference, largest]
+            = largest_difference(discretization.locally_owned,
+                                 residual,
+                                 fused.residual());
+          floor_difference = difference / largest;
         }
     rows.push_back({"quadrature-loop kernel (1 thread)",
                     time([&] { floor.assemble(u_all, false); }),
@@ -357,54 +439,20 @@ namespace tissuefem::problems
 
     // The same numbers: f_int of both, relative to its largest entry.
     solid.internal_force(u, residual);
-    double difference = 0, largest = 0;
-    for (const auto i : discretization.locally_owned)
-      {
-        difference
-          = std::max(difference, std::abs(residual[i] - floor.residual()[i]));
-        largest = std::max(largest, std::abs(floor.residual()[i]));
-      }
+    auto [difference, largest]
+      = largest_difference(discretization.locally_owned,
+                           residual,
+                           floor.residual());
     difference
       = Utilities::MPI::max(difference, parallel_tools::communicator());
     largest = Utilities::MPI::max(largest, parallel_tools::communicator());
-
-    if (floor_difference >= 0)
-      screen << "True floor: forces differ from tissuefem's by "
-             << std::scientific << std::setprecision(1) << floor_difference
-             << " relative" << std::defaultfloat << std::setprecision(6)
-             << "\n";
-    screen << "Against the first kernel (internal forces only; "
-           << parallel_tools::n_processes() << " MPI process(es); us per cell "
-           << "of the whole mesh; ";
-    if (parallel_tools::n_processes() == 1)
-      screen << "the quadrature-loop kernel's residual differs from "
-                "tissuefem's by "
-             << std::scientific << std::setprecision(1) << difference / largest
-             << " relative):\n";
-    else
-      screen << "each process's single-thread kernels sum only its own "
-                "cells):\n";
-    screen << std::defaultfloat << std::setw(42) << "" << std::setw(14)
-           << "residual" << std::setw(10) << "ratio" << std::setw(22)
-           << "residual + Jacobian" << std::setw(10) << "ratio"
-           << "\n";
-    for (const auto &row : rows)
-      screen << std::setw(42) << row.name << std::fixed << std::setprecision(2)
-             << std::setw(14) << row.residual << std::setw(10)
-             << row.residual / rows[0].residual << std::setw(22) << row.jacobian
-             << std::setw(10) << row.jacobian / rows[0].jacobian
-             << std::defaultfloat << std::setprecision(6) << "\n";
-    if (target_ms > 0)
-      {
-        const double update_ms = rows[all_thread_row].residual * n_cells / 1e3;
-        screen << "One internal-force update of the whole mesh (" << n_cells
-               << " cells): " << std::setprecision(3) << update_ms
-               << " ms with " << all_threads << " thread(s) (" << rows[0].name
-               << ": " << rows[0].residual * n_cells / 1e3 << " ms); target "
-               << target_ms
-               << " ms: measured / target = " << update_ms / target_ms
-               << std::setprecision(6) << "\n";
-      }
+    print_floor_table(rows,
+                      floor_difference,
+                      difference / largest,
+                      n_cells,
+                      all_threads,
+                      all_thread_row,
+                      target_ms);
   }
 
 

@@ -3,6 +3,7 @@
 #include <tissuefem/base/interruption.h>
 #include <tissuefem/base/parallel.h>
 #include <tissuefem/base/parameter_tools.h>
+#include <tissuefem/base/timing.h>
 #include <tissuefem/output/run_record.h>
 #include <tissuefem/problems/study.h>
 #include <tissuefem/study/runner.h>
@@ -16,9 +17,8 @@
 
 namespace tissuefem::problems
 {
-  template <int dim>
   void
-  Study<dim>::declare_parameters(ParameterHandler &prm)
+  Study::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Study");
     prm.declare_entry("Scene",
@@ -95,14 +95,15 @@ namespace tissuefem::problems
   }
 
 
-  template <int dim>
-  Study<dim>::Study(ParameterHandler &prm, const RunContext &context)
+  Study::Study(ParameterHandler &prm, const RunContext &context)
       : context(context)
   {
     require(parallel_tools::n_processes() == 1,
             "Problem",
             "a study runs on one process; its variants can use MPI through "
             "'Study/Launcher'");
+    // Until setup() reads the scene's own (orders in h need it).
+    scene_dimension = prm.get_integer("Dimension");
     prm.enter_subsection("Study");
     scene = prm.get("Scene");
     require(!scene.empty(), "Study/Scene", "is empty");
@@ -145,10 +146,9 @@ namespace tissuefem::problems
   }
 
 
-  template <int dim>
   std::vector<std::string>
-  Study<dim>::arguments(const std::vector<study::Setting> &extra,
-                        const std::string                 &output) const
+  Study::arguments(const std::vector<study::Setting> &extra,
+                   const std::string                 &output) const
   {
     std::vector<std::string> args = {scene};
     for (const auto *list : {&settings, &extra})
@@ -168,9 +168,8 @@ namespace tissuefem::problems
   }
 
 
-  template <int dim>
   study::Variant
-  Study<dim>::reference_variant() const
+  Study::reference_variant() const
   {
     study::Variant v;
     v.index    = 0;
@@ -182,9 +181,8 @@ namespace tissuefem::problems
   }
 
 
-  template <int dim>
   void
-  Study<dim>::setup()
+  Study::setup()
   {
     // Every run's parameters must be valid before the first one starts: a
     // typo in the last variant must not cost the whole study.
@@ -229,11 +227,10 @@ namespace tissuefem::problems
   }
 
 
-  template <int dim>
   study::RunOutcome
-  Study<dim>::launch(const std::vector<study::Setting> &extra,
-                     const std::string                 &output,
-                     const std::string                 &what) const
+  Study::launch(const std::vector<study::Setting> &extra,
+                const std::string                 &output,
+                const std::string                 &what) const
   {
     namespace fs = std::filesystem;
     std::error_code ec;
@@ -258,11 +255,10 @@ namespace tissuefem::problems
   }
 
 
-  template <int dim>
   study::Row
-  Study<dim>::run_variant(const study::Variant &variant,
-                          const std::string    &output,
-                          bool                 &reused) const
+  Study::run_variant(const study::Variant &variant,
+                     const std::string    &output,
+                     bool                 &reused) const
   {
     namespace fs = std::filesystem;
     std::ostringstream settings_text;
@@ -308,13 +304,29 @@ namespace tissuefem::problems
   }
 
 
-  template <int dim>
   void
-  Study<dim>::run()
+  Study::run()
   {
     setup();
     install_interruption_handlers();
-    auto &screen = parallel_tools::screen();
+    create_directories();
+    const auto                    start = std::chrono::steady_clock::now();
+    const std::string             reference_directory = run_reference();
+    const std::vector<study::Row> rows
+      = run_variants(reference_directory, start);
+    const std::string what = quantity.describe();
+    write_reports(rows, what);
+    if (!picker.tolerances.empty() && picker.tolerances[0] > 0)
+      run_choices(rows, what);
+    parallel_tools::screen()
+      << "study: " << rows.size() << " variants in " << seconds_since(start)
+      << " s; results in " << directory << "/results.csv" << std::endl;
+  }
+
+
+  void
+  Study::create_directories() const
+  {
     namespace fs = std::filesystem;
     std::error_code ec;
     fs::create_directories(directory, ec);
@@ -323,56 +335,60 @@ namespace tissuefem::problems
     require(!ec,
             "Study/Runs directory",
             "cannot create '" + runs_directory + "'");
+  }
 
-    const auto start   = std::chrono::steady_clock::now();
-    const auto elapsed = [&] {
-      return std::chrono::duration<double>(std::chrono::steady_clock::now()
-                                           - start)
-        .count();
-    };
-    std::string reference_directory;
-    if (quantity.reference == "reference run")
-      {
-        reference_directory = runs_directory + "/reference";
-        screen << "study: reference run (" << quantity.reference_settings << ")"
-               << std::endl;
-        bool       reused;
-        const auto reference
-          = run_variant(reference_variant(), reference_directory, reused);
-        if (!reference.finished)
-          throw SolverError("the reference run did not finish ("
-                            + reference.status + "; see " + reference_directory
-                            + "/log.txt)");
-      }
 
+  std::string
+  Study::run_reference() const
+  {
+    if (quantity.reference != "reference run")
+      return "";
+    const std::string reference_directory = runs_directory + "/reference";
+    parallel_tools::screen() << "study: reference run ("
+                             << quantity.reference_settings << ")" << std::endl;
+    bool       reused;
+    const auto reference
+      = run_variant(reference_variant(), reference_directory, reused);
+    if (!reference.finished)
+      throw SolverError("the reference run did not finish (" + reference.status
+                        + "; see " + reference_directory + "/log.txt)");
+    return reference_directory;
+  }
+
+
+  std::vector<study::Row>
+  Study::run_variants(const std::string                          &reference,
+                      const std::chrono::steady_clock::time_point start) const
+  {
+    auto                   &screen = parallel_tools::screen();
     std::vector<study::Row> rows;
-    unsigned int            ran         = 0;
-    double                  run_seconds = 0;
+    // Runs made now (not kept from before) and their time, for the
+    // estimate of the time left.
+    unsigned int ran         = 0;
+    double       run_seconds = 0;
     for (const auto &variant : variants)
       {
         const std::string output
           = runs_directory + "/variant-" + std::to_string(variant.index);
         screen << "study: variant " << variant.index << " of "
                << variants.size() << " (" << variant.label << "), "
-               << std::fixed << std::setprecision(1) << elapsed()
+               << std::fixed << std::setprecision(1) << seconds_since(start)
                << " s elapsed";
         const unsigned int left = variants.size() - variant.index + 1;
         if (ran > 0)
           screen << ", about " << run_seconds / ran * left << " s to go";
         screen << std::defaultfloat << std::setprecision(6) << std::endl;
         bool       reused;
-        const auto t0  = elapsed();
+        const auto t0  = seconds_since(start);
         study::Row row = run_variant(variant, output, reused);
         if (!reused)
           {
             ++ran;
-            run_seconds += elapsed() - t0;
+            run_seconds += seconds_since(start) - t0;
           }
         if (row.finished)
-          row.error = study::quantity_error(quantity,
-                                            output,
-                                            row.record,
-                                            reference_directory);
+          row.error
+            = study::quantity_error(quantity, output, row.record, reference);
         screen << "  " << (reused ? "kept from before: " : "") << row.status;
         if (row.finished)
           screen << ", " << row.get("unknowns") << " unknowns, "
@@ -388,8 +404,15 @@ namespace tissuefem::problems
                               + "; run it again to resume (finished variants "
                                 "are kept)");
       }
+    return rows;
+  }
 
-    const std::string what = quantity.describe();
+
+  void
+  Study::write_reports(const std::vector<study::Row> &rows,
+                       const std::string             &what) const
+  {
+    auto &screen = parallel_tools::screen();
     study::write_csv(directory + "/results.csv", axes, rows, what);
     std::ostringstream tables;
     study::write_convergence_tables(
@@ -402,68 +425,78 @@ namespace tissuefem::problems
       = study::summary_paragraph(rows, tolerances, what);
     std::ofstream(directory + "/summary.txt") << summary << '\n';
     screen << summary << "\n" << std::endl;
-
-    if (!picker.tolerances.empty() && picker.tolerances[0] > 0)
-      {
-        std::ofstream choices(directory + "/choice.txt");
-        unsigned int  k = 0;
-        // The choices in brief, and the runs already made for a variant.
-        std::ostringstream                  brief;
-        std::map<unsigned int, std::string> ran_into;
-        for (const double tolerance : picker.tolerances)
-          for (const double budget : picker.budgets)
-            {
-              ++k;
-              const auto choice = study::pick(rows, tolerance, budget, what);
-              choices << choice.explanation << "\n\n" << std::flush;
-              screen << choice.explanation << std::endl;
-              brief << "  error <= " << tolerance << ", "
-                    << (budget > 0 ? "frame " + std::to_string(budget) + " s"
-                                   : std::string("no budget"))
-                    << ": "
-                    << (choice.row
-                          ? "#"
-                              + std::to_string(rows[*choice.row].variant.index)
-                              + " (" + rows[*choice.row].variant.label + ")"
-                          : std::string("none"))
-                    << '\n';
-              if (!choice.row || !picker.run_choice)
-                continue;
-              const unsigned int chosen = rows[*choice.row].variant.index;
-              if (ran_into.count(chosen))
-                {
-                  screen << "study: the scene with choice #" << chosen
-                         << " ran already, into " << ran_into[chosen] << "\n"
-                         << std::endl;
-                  continue;
-                }
-              const std::string output
-                = directory + "/choice-" + std::to_string(k);
-              ran_into[chosen] = output;
-              screen << "study: running the scene with choice #"
-                     << rows[*choice.row].variant.index << " into " << output
-                     << std::endl;
-              const auto outcome
-                = launch(rows[*choice.row].variant.settings,
-                         output,
-                         "the run of choice #" + std::to_string(chosen));
-              screen << "  " << study::describe_exit(outcome.exit_status)
-                     << " in " << outcome.wall_seconds << " s\n"
-                     << std::endl;
-            }
-        choices << "Choices:\n" << brief.str();
-        screen << "Choices:\n" << brief.str() << std::endl;
-      }
-    screen << "study: " << rows.size() << " variants in " << elapsed()
-           << " s; results in " << directory << "/results.csv" << std::endl;
   }
 
-  template class Study<1>;
-  template class Study<2>;
-  template class Study<3>;
 
-  TISSUEFEM_REGISTER_PROBLEM(Study,
-                             "study",
-                             "runs an elasticity scene over variants and "
-                             "charts error against cost (see 'Study').")
+  void
+  Study::run_choices(const std::vector<study::Row> &rows,
+                     const std::string             &what) const
+  {
+    auto         &screen = parallel_tools::screen();
+    std::ofstream choices(directory + "/choice.txt");
+    unsigned int  k = 0;
+    // The choices in brief, and the runs already made for a variant.
+    std::ostringstream                  brief;
+    std::map<unsigned int, std::string> ran_into;
+    for (const double tolerance : picker.tolerances)
+      for (const double budget : picker.budgets)
+        {
+          ++k;
+          const auto choice = study::pick(rows, tolerance, budget, what);
+          choices << choice.explanation << "\n\n" << std::flush;
+          screen << choice.explanation << std::endl;
+          brief << "  error <= " << tolerance << ", "
+                << (budget > 0 ? "frame " + std::to_string(budget) + " s"
+                               : std::string("no budget"))
+                << ": "
+                << (choice.row
+                      ? "#" + std::to_string(rows[*choice.row].variant.index)
+                          + " (" + rows[*choice.row].variant.label + ")"
+                      : std::string("none"))
+                << '\n';
+          if (!choice.row || !picker.run_choice)
+            continue;
+          const unsigned int chosen = rows[*choice.row].variant.index;
+          if (ran_into.count(chosen))
+            {
+              screen << "study: the scene with choice #" << chosen
+                     << " ran already, into " << ran_into[chosen] << "\n"
+                     << std::endl;
+              continue;
+            }
+          const std::string output = directory + "/choice-" + std::to_string(k);
+          ran_into[chosen]         = output;
+          screen << "study: running the scene with choice #" << chosen
+                 << " into " << output << std::endl;
+          const auto outcome
+            = launch(rows[*choice.row].variant.settings,
+                     output,
+                     "the run of choice #" + std::to_string(chosen));
+          screen << "  " << study::describe_exit(outcome.exit_status) << " in "
+                 << outcome.wall_seconds << " s\n"
+                 << std::endl;
+        }
+    choices << "Choices:\n" << brief.str();
+    screen << "Choices:\n" << brief.str() << std::endl;
+  }
+
+
+  // Study does not depend on the dimension (its variants are separate
+  // processes that read their own), so it is registered once, not through
+  // TISSUEFEM_REGISTER_PROBLEM's Study<dim> for each dimension.
+  namespace
+  {
+    const bool study_registered = [] {
+      ProblemRegistry::instance().add(
+        "study",
+        "runs an elasticity scene over variants and charts error against cost "
+        "(see 'Study').",
+        &Study::declare_parameters,
+        [](ParameterHandler &prm, const RunContext &context) {
+          return std::unique_ptr<Interface>(
+            std::make_unique<Study>(prm, context));
+        });
+      return true;
+    }();
+  } // namespace
 } // namespace tissuefem::problems

@@ -171,6 +171,209 @@ namespace tissuefem::solvers
             Ax[p] = values[order[p]];
         }
     }
+
+    using TimePoint = std::chrono::steady_clock::time_point;
+
+    /// MUMPS or KLU (@p type) through Amesos: the symbolic analysis once
+    /// per matrix, the numeric factorization when asked for or missing.
+    /// @p start is when the solve began (setup time is counted from it).
+    void
+    solve_amesos(const std::string      &type,
+                 Epetra_CrsMatrix       &M,
+                 VectorType             &x,
+                 const VectorType       &b,
+                 const bool              refactorize,
+                 const TimePoint         start,
+                 LinearSolverStatistics &stats)
+    {
+      if (!amesos)
+        {
+          problem.SetOperator(&M);
+          Amesos factory;
+          amesos.reset(
+            factory.Create(type == "MUMPS" ? "Amesos_Mumps" : "Amesos_Klu",
+                           problem));
+          if (!amesos)
+            throw SolverError("Amesos has no " + type);
+          if (amesos->SymbolicFactorization() != 0)
+            throw SolverError("symbolic factorization failed");
+          ++stats.setups;
+          stats.setup_seconds += seconds_since(start);
+        }
+      problem.SetLHS(&x.trilinos_vector());
+      problem.SetRHS(const_cast<Epetra_MultiVector *>(
+        static_cast<const Epetra_MultiVector *>(&b.trilinos_vector())));
+      if (refactorize || !factorized)
+        {
+          factorized = false;
+          if (amesos->NumericFactorization() != 0)
+            throw SolverError("numeric factorization failed (singular "
+                              "Jacobian?)");
+          factorized = true;
+          ++stats.factorizations;
+        }
+      if (amesos->Solve() != 0)
+        throw SolverError("triangular solves failed");
+    }
+
+    /// UMFPACK on the rows of @p M: the symbolic analysis once, the
+    /// numeric factorization when asked for or missing.
+    void
+    solve_umfpack(const Epetra_CrsMatrix &M,
+                  VectorType             &x,
+                  const VectorType       &b,
+                  const bool              refactorize,
+                  const TimePoint         start,
+                  LinearSolverStatistics &stats)
+    {
+      const bool with_numeric = refactorize || !numeric;
+      if (with_numeric)
+        copy_rows(M);
+      const SuiteSparse_long n = Ap.size() - 1;
+      double                 control[UMFPACK_CONTROL];
+      umfpack_dl_defaults(control);
+      if (!symbolic)
+        {
+          if (umfpack_dl_symbolic(n,
+                                  n,
+                                  Ap.data(),
+                                  Ai.data(),
+                                  Ax.data(),
+                                  &symbolic,
+                                  control,
+                                  nullptr)
+              != UMFPACK_OK)
+            throw SolverError("UMFPACK symbolic analysis failed");
+          ++stats.setups;
+          stats.setup_seconds += seconds_since(start);
+        }
+      if (with_numeric)
+        {
+          if (numeric)
+            umfpack_dl_free_numeric(&numeric);
+          const auto status = umfpack_dl_numeric(Ap.data(),
+                                                 Ai.data(),
+                                                 Ax.data(),
+                                                 symbolic,
+                                                 &numeric,
+                                                 control,
+                                                 nullptr);
+          if (status != UMFPACK_OK)
+            throw SolverError("UMFPACK numeric factorization failed "
+                              "(status "
+                              + std::to_string(status) + ")");
+          ++stats.factorizations;
+        }
+      // The rows of A read as columns are A^T: solve its transpose.
+      if (umfpack_dl_solve(UMFPACK_At,
+                           Ap.data(),
+                           Ai.data(),
+                           Ax.data(),
+                           x.trilinos_vector()[0],
+                           b.trilinos_vector()[0],
+                           numeric,
+                           control,
+                           nullptr)
+          != UMFPACK_OK)
+        throw SolverError("UMFPACK solve failed");
+    }
+
+    /// CG with the kept AMG hierarchy (built on first use); a hierarchy
+    /// that has become poor (or fails) is rebuilt from the current matrix
+    /// and the solve repeated once.
+    void
+    solve_cg_amg(const MatrixType             &A,
+                 const Epetra_CrsMatrix       &M,
+                 VectorType                   &x,
+                 const VectorType             &b,
+                 const LinearSolverParameters &parameters,
+                 const double                  relative_tolerance,
+                 LinearSolverStatistics       &stats)
+    {
+      const double tolerance
+        = std::max(parameters.relative_tolerance, relative_tolerance);
+      if (!amg)
+        build_amg(A, M, stats);
+      unsigned int iterations
+        = cg_solve(A, x, b, tolerance, parameters.max_iterations);
+      if (iterations == std::numeric_limits<unsigned int>::max()
+          || (reference_iterations > 0
+              && iterations > parameters.rebuild_factor * reference_iterations))
+        {
+          stats.iterations += std::min(iterations, parameters.max_iterations);
+          build_amg(A, M, stats);
+          iterations = cg_solve(A, x, b, tolerance, parameters.max_iterations);
+        }
+      if (iterations == std::numeric_limits<unsigned int>::max())
+        throw SolverError("CG did not converge in "
+                          + std::to_string(parameters.max_iterations)
+                          + " iterations ('Linear solver/Maximum "
+                            "iterations')");
+      if (reference_iterations == 0)
+        reference_iterations = std::max(iterations, 1u);
+      stats.iterations += iterations;
+    }
+
+    /// The ML hierarchy for @p A, with the rigid-body modes as near-null
+    /// space where they were given.
+    void
+    build_amg(const MatrixType       &A,
+              const Epetra_CrsMatrix &M,
+              LinearSolverStatistics &stats)
+    {
+      const auto build_start = std::chrono::steady_clock::now();
+      TrilinosWrappers::PreconditionAMG::AdditionalData data;
+      data.elliptic              = true;
+      data.smoother_sweeps       = 2;
+      data.aggregation_threshold = 0.02;
+      Teuchos::ParameterList              list;
+      std::unique_ptr<Epetra_MultiVector> unused;
+      data.set_parameters(list, unused, M);
+      if (!mode_vectors.empty())
+        {
+          const auto &map = mode_vectors[0].trilinos_vector().Map();
+          modes
+            = std::make_unique<Epetra_MultiVector>(map, mode_vectors.size());
+          for (unsigned int m = 0; m < mode_vectors.size(); ++m)
+            for (int i = 0; i < map.NumMyElements(); ++i)
+              (*modes)[m][i] = mode_vectors[m].trilinos_vector()[0][i];
+          list.set("null space: type", "pre-computed");
+          list.set("null space: dimension",
+                   static_cast<int>(mode_vectors.size()));
+          list.set("null space: vectors", modes->Values());
+          // ML aggregates nodes, not single dofs, when it knows how
+          // many unknowns each node has.
+          list.set("PDE equations", static_cast<int>(components));
+        }
+      amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
+      amg->initialize(A, list);
+      reference_iterations = 0;
+      ++stats.setups;
+      stats.setup_seconds += seconds_since(build_start);
+    }
+
+    /// CG iterations to |b - A x| <= @p tolerance |b|, or the largest
+    /// unsigned int if CG does not get there.
+    unsigned int
+    cg_solve(const MatrixType  &A,
+             VectorType        &x,
+             const VectorType  &b,
+             const double       tolerance,
+             const unsigned int max_iterations)
+    {
+      SolverControl        control(max_iterations, tolerance * b.l2_norm());
+      SolverCG<VectorType> cg(control);
+      x = 0;
+      try
+        {
+          cg.solve(A, x, b, *amg);
+        }
+      catch (const SolverControl::NoConvergence &)
+        {
+          return std::numeric_limits<unsigned int>::max();
+        }
+      return control.last_step();
+    }
   };
 
 
@@ -226,166 +429,12 @@ namespace tissuefem::solvers
     try
       {
         if (parameters.type == "MUMPS" || parameters.type == "KLU")
-          {
-            if (!impl.amesos)
-              {
-                impl.problem.SetOperator(&M);
-                Amesos factory;
-                impl.amesos.reset(factory.Create(parameters.type == "MUMPS"
-                                                   ? "Amesos_Mumps"
-                                                   : "Amesos_Klu",
-                                                 impl.problem));
-                if (!impl.amesos)
-                  throw SolverError("Amesos has no " + parameters.type);
-                if (impl.amesos->SymbolicFactorization() != 0)
-                  throw SolverError("symbolic factorization failed");
-                ++stats.setups;
-                stats.setup_seconds += seconds_since(start);
-              }
-            impl.problem.SetLHS(&x.trilinos_vector());
-            impl.problem.SetRHS(const_cast<Epetra_MultiVector *>(
-              static_cast<const Epetra_MultiVector *>(&b.trilinos_vector())));
-            if (refactorize || !impl.factorized)
-              {
-                impl.factorized = false;
-                if (impl.amesos->NumericFactorization() != 0)
-                  throw SolverError("numeric factorization failed (singular "
-                                    "Jacobian?)");
-                impl.factorized = true;
-                ++stats.factorizations;
-              }
-            if (impl.amesos->Solve() != 0)
-              throw SolverError("triangular solves failed");
-          }
+          impl.solve_amesos(
+            parameters.type, M, x, b, refactorize, start, stats);
         else if (parameters.type == "UMFPACK")
-          {
-            const bool numeric = refactorize || !impl.numeric;
-            if (numeric)
-              impl.copy_rows(M);
-            const SuiteSparse_long n = impl.Ap.size() - 1;
-            double                 control[UMFPACK_CONTROL];
-            umfpack_dl_defaults(control);
-            if (!impl.symbolic)
-              {
-                if (umfpack_dl_symbolic(n,
-                                        n,
-                                        impl.Ap.data(),
-                                        impl.Ai.data(),
-                                        impl.Ax.data(),
-                                        &impl.symbolic,
-                                        control,
-                                        nullptr)
-                    != UMFPACK_OK)
-                  throw SolverError("UMFPACK symbolic analysis failed");
-                ++stats.setups;
-                stats.setup_seconds += seconds_since(start);
-              }
-            if (numeric)
-              {
-                if (impl.numeric)
-                  umfpack_dl_free_numeric(&impl.numeric);
-                const auto status = umfpack_dl_numeric(impl.Ap.data(),
-                                                       impl.Ai.data(),
-                                                       impl.Ax.data(),
-                                                       impl.symbolic,
-                                                       &impl.numeric,
-                                                       control,
-                                                       nullptr);
-                if (status != UMFPACK_OK)
-                  throw SolverError("UMFPACK numeric factorization failed "
-                                    "(status "
-                                    + std::to_string(status) + ")");
-                ++stats.factorizations;
-              }
-            // The rows of A read as columns are A^T: solve its transpose.
-            if (umfpack_dl_solve(UMFPACK_At,
-                                 impl.Ap.data(),
-                                 impl.Ai.data(),
-                                 impl.Ax.data(),
-                                 x.trilinos_vector()[0],
-                                 b.trilinos_vector()[0],
-                                 impl.numeric,
-                                 control,
-                                 nullptr)
-                != UMFPACK_OK)
-              throw SolverError("UMFPACK solve failed");
-          }
+          impl.solve_umfpack(M, x, b, refactorize, start, stats);
         else
-          {
-            auto build = [&]() {
-              const auto build_start = std::chrono::steady_clock::now();
-              TrilinosWrappers::PreconditionAMG::AdditionalData data;
-              data.elliptic              = true;
-              data.smoother_sweeps       = 2;
-              data.aggregation_threshold = 0.02;
-              Teuchos::ParameterList              list;
-              std::unique_ptr<Epetra_MultiVector> unused;
-              data.set_parameters(list, unused, M);
-              if (!impl.mode_vectors.empty())
-                {
-                  const auto &map
-                    = impl.mode_vectors[0].trilinos_vector().Map();
-                  impl.modes = std::make_unique<Epetra_MultiVector>(
-                    map, impl.mode_vectors.size());
-                  for (unsigned int m = 0; m < impl.mode_vectors.size(); ++m)
-                    for (int i = 0; i < map.NumMyElements(); ++i)
-                      (*impl.modes)[m][i]
-                        = impl.mode_vectors[m].trilinos_vector()[0][i];
-                  list.set("null space: type", "pre-computed");
-                  list.set("null space: dimension",
-                           static_cast<int>(impl.mode_vectors.size()));
-                  list.set("null space: vectors", impl.modes->Values());
-                  // ML aggregates nodes, not single dofs, when it knows how
-                  // many unknowns each node has.
-                  list.set("PDE equations", static_cast<int>(impl.components));
-                }
-              impl.amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
-              impl.amg->initialize(A, list);
-              impl.reference_iterations = 0;
-              ++stats.setups;
-              stats.setup_seconds += seconds_since(build_start);
-            };
-            auto cg_solve = [&]() {
-              SolverControl        control(parameters.max_iterations,
-                                    std::max(parameters.relative_tolerance,
-                                             relative_tolerance)
-                                      * b.l2_norm());
-              SolverCG<VectorType> cg(control);
-              x = 0;
-              try
-                {
-                  cg.solve(A, x, b, *impl.amg);
-                }
-              catch (const SolverControl::NoConvergence &)
-                {
-                  return std::numeric_limits<unsigned int>::max();
-                }
-              return control.last_step();
-            };
-            if (!impl.amg)
-              build();
-            unsigned int iterations = cg_solve();
-            // A kept hierarchy that has become poor (or fails) is rebuilt
-            // from the current matrix and the solve repeated once.
-            if (iterations == std::numeric_limits<unsigned int>::max()
-                || (impl.reference_iterations > 0
-                    && iterations > parameters.rebuild_factor
-                                      * impl.reference_iterations))
-              {
-                stats.iterations
-                  += std::min(iterations, parameters.max_iterations);
-                build();
-                iterations = cg_solve();
-              }
-            if (iterations == std::numeric_limits<unsigned int>::max())
-              throw SolverError("CG did not converge in "
-                                + std::to_string(parameters.max_iterations)
-                                + " iterations ('Linear solver/Maximum "
-                                  "iterations')");
-            if (impl.reference_iterations == 0)
-              impl.reference_iterations = std::max(iterations, 1u);
-            stats.iterations += iterations;
-          }
+          impl.solve_cg_amg(A, M, x, b, parameters, relative_tolerance, stats);
       }
     catch (const SolverError &e)
       {

@@ -138,6 +138,417 @@ namespace tissuefem::solvers
   }
 
 
+  namespace
+  {
+    using Clock = std::chrono::steady_clock;
+
+    /**
+     * The state of one solve_newton() call: the iterate, its residual,
+     * norm and energy, and the result so far. A class so that the phases
+     * of an iteration (the update, the two line searches, taking the step)
+     * can be functions of their own that share this state.
+     */
+    class NewtonIteration
+    {
+    public:
+      NewtonIteration(
+        const NewtonParameters &parameters,
+        VectorType             &u,
+        const std::function<void(const VectorType &, VectorType &, bool)>
+          &assemble,
+        const std::function<void(VectorType &, const VectorType &, bool)>
+                                                        &solve_jacobian,
+        const std::function<double(const VectorType &)> &energy,
+        const double                                     length_scale,
+        const bool                                       jacobian_current)
+          : parameters(parameters)
+          , u(u)
+          , assemble(assemble)
+          , solve_jacobian(solve_jacobian)
+          , energy(energy)
+          , length_scale(length_scale)
+          , reuse(parameters.reuse_jacobian)
+          , use_energy(parameters.energy_line_search && energy
+                       && parameters.max_line_search_steps > 0)
+          // With reuse, trial states get residuals only; the Jacobian is
+          // assembled where it is needed (need_jacobian).
+          , need_jacobian(!(reuse && jacobian_current))
+      {
+        update.reinit(u);
+        trial.reinit(u);
+        rhs.reinit(u);
+      }
+
+      NewtonResult
+      run();
+
+    private:
+      const NewtonParameters &parameters;
+      VectorType             &u;
+      const std::function<void(const VectorType &, VectorType &, bool)>
+        &assemble;
+      const std::function<void(VectorType &, const VectorType &, bool)>
+                                                      &solve_jacobian;
+      const std::function<double(const VectorType &)> &energy;
+      const double                                     length_scale;
+      const bool                                       reuse, use_energy;
+      bool                                             need_jacobian;
+
+      NewtonResult result;
+      VectorType   residual, update, trial, trial_residual, rhs;
+      double       norm = 0, first_norm = 0, current_energy = 0;
+
+      /// assemble(), timed and counted in the result.
+      void
+      timed_assemble(const VectorType &x, VectorType &r, const bool jacobian)
+      {
+        const auto start = Clock::now();
+        assemble(x, r, jacobian);
+        result.assembly_seconds += seconds_since(start);
+        if (jacobian)
+          ++result.jacobians;
+      }
+
+      /// The energy at a state, +infinity where the model cannot evaluate
+      /// it (so that the line search shortens the step).
+      double
+      energy_at(const VectorType &x)
+      {
+        const auto start = Clock::now();
+        double     value = std::numeric_limits<double>::infinity();
+        try
+          {
+            value = energy(x);
+          }
+        catch (const SolverError &)
+          {
+          }
+        result.assembly_seconds += seconds_since(start);
+        return std::isfinite(value) ? value
+                                    : std::numeric_limits<double>::infinity();
+      }
+
+      /// Newton's residual tests (the relative one from the first
+      /// iteration on).
+      bool
+      residual_converged() const
+      {
+        return norm <= parameters.absolute_residual_tolerance
+               || (result.iterations > 0
+                   && norm
+                        <= parameters.relative_residual_tolerance * first_norm);
+      }
+
+      bool
+      finished_before_iteration();
+
+      bool
+      solve_for_update();
+
+      bool
+      line_search(double &alpha);
+
+      bool
+      energy_line_search(const double slope, double &alpha);
+
+      bool
+      quadratic_phase(const double slope, const double trial_energy);
+
+      bool
+      residual_line_search(double &alpha);
+
+      bool
+      retry_with_fresh_jacobian();
+
+      bool
+      take_step(const double alpha);
+    };
+
+
+    NewtonResult
+    NewtonIteration::run()
+    {
+      try
+        {
+          timed_assemble(u, residual, need_jacobian);
+        }
+      catch (const SolverError &e)
+        {
+          result.failure = e.what();
+          return result;
+        }
+      norm = checked_l2_norm(residual);
+      result.residual_norms.push_back(norm);
+      first_norm     = norm;
+      current_energy = use_energy ? energy_at(u) : 0.;
+
+      while (!finished_before_iteration() && solve_for_update())
+        {
+          double alpha = 1;
+          if (!line_search(alpha))
+            {
+              if (retry_with_fresh_jacobian())
+                continue;
+              if (result.failure.empty())
+                result.failure = "line search found no admissible step";
+              return result;
+            }
+          if (take_step(alpha))
+            return result;
+        }
+      return result;
+    }
+
+
+    /// The tests at the top of an iteration: whether Newton stops here,
+    /// converged or not, before solving for another update.
+    bool
+    NewtonIteration::finished_before_iteration()
+    {
+      if (!std::isfinite(norm))
+        {
+          result.failure = "residual is not finite";
+          return true;
+        }
+      if (residual_converged())
+        {
+          result.converged = true;
+          return true;
+        }
+      if (result.iterations == parameters.max_iterations)
+        {
+          result.failure
+            = "no convergence in " + std::to_string(parameters.max_iterations)
+              + " iterations (residual norm " + std::to_string(norm) + ")";
+          return true;
+        }
+      return false;
+    }
+
+
+    /// The Newton update J du = -R; false (with the failure recorded) if
+    /// the linear solver gives up.
+    bool
+    NewtonIteration::solve_for_update()
+    {
+      rhs.equ(-1., residual);
+      const auto start = Clock::now();
+      try
+        {
+          solve_jacobian(update, rhs, need_jacobian);
+        }
+      catch (const SolverError &e)
+        {
+          result.failure = e.what();
+          return false;
+        }
+      result.solve_seconds += seconds_since(start);
+      ++result.iterations;
+      return true;
+    }
+
+
+    /// Chooses the step length @p alpha along the update; leaves the
+    /// accepted state in trial and its residual in trial_residual.
+    /// Energy line search where the update descends (R.du < 0; R is the
+    /// energy gradient); else the residual norm.
+    bool
+    NewtonIteration::line_search(double &alpha)
+    {
+      const double slope
+        = use_energy && std::isfinite(current_energy) ? residual * update : 0.;
+      if (slope < 0)
+        return energy_line_search(slope, alpha);
+      return residual_line_search(alpha);
+    }
+
+
+    /// Armijo's sufficient decrease of the energy, step lengths from
+    /// quadratic interpolation.
+    bool
+    NewtonIteration::energy_line_search(const double slope, double &alpha)
+    {
+      bool accepted = false;
+      // Sums of many terms of either sign: allow their round-off.
+      const double round_off    = 1e-11 * std::abs(current_energy);
+      double       trial_energy = current_energy;
+      bool         assembled    = false;
+      for (unsigned int k = 0; k <= parameters.max_line_search_steps; ++k)
+        {
+          trial = u;
+          trial.add(alpha, update);
+          trial_energy = energy_at(trial);
+          if (trial_energy <= current_energy + 1e-4 * alpha * slope + round_off)
+            {
+              accepted = true;
+              break;
+            }
+          if (k == 0 && std::isfinite(trial_energy)
+              && quadratic_phase(slope, trial_energy))
+            {
+              current_energy = trial_energy;
+              assembled      = true;
+              accepted       = true;
+              break;
+            }
+          // Minimizer of the quadratic through E(0), E'(0), E(alpha),
+          // kept within [0.1, 0.5] alpha.
+          double next = 0.5 * alpha;
+          if (std::isfinite(trial_energy))
+            {
+              const double curvature
+                = trial_energy - current_energy - slope * alpha;
+              if (curvature > 0)
+                next = -slope * alpha * alpha / (2 * curvature);
+            }
+          alpha = std::clamp(next, 0.1 * alpha, 0.5 * alpha);
+        }
+      if (!accepted && std::isfinite(trial_energy))
+        accepted = true; // the last trial, as the residual search does
+      if (accepted && !assembled)
+        {
+          try
+            {
+              timed_assemble(trial, trial_residual, !reuse);
+              accepted       = std::isfinite(checked_l2_norm(trial_residual));
+              current_energy = trial_energy;
+            }
+          catch (const SolverError &e)
+            {
+              result.failure = e.what();
+              accepted       = false;
+            }
+        }
+      return accepted;
+    }
+
+
+    /// Near a solution the energy's change falls below its round-off: a
+    /// full step (in trial) that halves the residual is Newton's quadratic
+    /// phase, take it, provided the energy did not rise by more than the
+    /// first-order change (a saddle would). Assembles trial_residual.
+    bool
+    NewtonIteration::quadratic_phase(const double slope,
+                                     const double trial_energy)
+    {
+      try
+        {
+          timed_assemble(trial, trial_residual, !reuse);
+          const double trial_norm = checked_l2_norm(trial_residual);
+          const double rise       = trial_energy - current_energy;
+          return std::isfinite(trial_norm) && trial_norm < 0.5 * norm
+                 && rise <= -slope
+                              + 1e-8
+                                  * std::max(std::abs(current_energy),
+                                             std::abs(trial_energy));
+        }
+      catch (const SolverError &)
+        {
+          return false;
+        }
+    }
+
+
+    /// Backtracking: accept the first step length that lowers |R| (or the
+    /// full step when the line search is off).
+    bool
+    NewtonIteration::residual_line_search(double &alpha)
+    {
+      for (unsigned int k = 0; k <= parameters.max_line_search_steps; ++k)
+        {
+          trial = u;
+          trial.add(alpha, update);
+          try
+            {
+              // Without reuse the Jacobian is assembled with the trial
+              // residual: the full step is almost always accepted, and
+              // then it is the one the next iteration needs.
+              timed_assemble(trial, trial_residual, !reuse);
+              const double trial_norm = checked_l2_norm(trial_residual);
+              if (std::isfinite(trial_norm)
+                  && (trial_norm < norm || parameters.max_line_search_steps == 0
+                      || k == parameters.max_line_search_steps))
+                {
+                  if (use_energy)
+                    current_energy = energy_at(trial);
+                  return true;
+                }
+            }
+          catch (const SolverError &e)
+            {
+              result.failure = e.what();
+            }
+          alpha *= 0.5;
+        }
+      return false;
+    }
+
+
+    /// A kept Jacobian may be what made the line search fail: try once
+    /// more with a fresh one from the same iterate. Whether to go on.
+    bool
+    NewtonIteration::retry_with_fresh_jacobian()
+    {
+      if (!reuse || need_jacobian)
+        return false;
+      need_jacobian = true;
+      try
+        {
+          timed_assemble(u, residual, true);
+          result.failure.clear();
+          return true;
+        }
+      catch (const SolverError &)
+        {
+          return false;
+        }
+    }
+
+
+    /// Moves to the accepted trial state; returns whether Newton is done
+    /// (converged by the update tests, or failed assembling a Jacobian).
+    bool
+    NewtonIteration::take_step(const double alpha)
+    {
+      result.failure.clear();
+      u = trial;
+      residual.swap(trial_residual);
+      const double previous_norm = norm;
+      norm                       = checked_l2_norm(residual);
+      result.residual_norms.push_back(norm);
+      // A kept Jacobian serves while it contracts at full steps.
+      need_jacobian
+        = !(reuse && alpha == 1 && std::isfinite(norm)
+            && norm <= parameters.reuse_contraction * previous_norm);
+      if (parameters.verbose)
+        std::cout << "    Newton " << result.iterations << ": |R| = " << norm
+                  << ", |du| = " << checked_l2_norm(update) << ", step "
+                  << alpha << std::endl;
+
+      if (alpha == 1
+          && (checked_l2_norm(update)
+                <= parameters.update_tolerance * (1 + checked_l2_norm(u))
+              || update.linfty_norm()
+                   <= parameters.displacement_tolerance * length_scale))
+        {
+          result.converged = std::isfinite(norm);
+          return true;
+        }
+      if (reuse && need_jacobian && !residual_converged())
+        try
+          {
+            timed_assemble(u, residual, true);
+          }
+        catch (const SolverError &e)
+          {
+            result.failure = e.what();
+            return true;
+          }
+      return false;
+    }
+  } // namespace
+
+
   NewtonResult
   solve_newton(
     const NewtonParameters &parameters,
@@ -149,264 +560,13 @@ namespace tissuefem::solvers
     const double                                     length_scale,
     const bool                                       jacobian_current)
   {
-    using Clock = std::chrono::steady_clock;
-    NewtonResult result;
-    VectorType   residual, update, trial, trial_residual, rhs;
-    update.reinit(u);
-    trial.reinit(u);
-    rhs.reinit(u);
-
-    auto timed_assemble
-      = [&](const VectorType &x, VectorType &r, const bool jacobian) {
-          const auto start = Clock::now();
-          assemble(x, r, jacobian);
-          result.assembly_seconds += seconds_since(start);
-          if (jacobian)
-            ++result.jacobians;
-        };
-    // With reuse, trial states get residuals only; the Jacobian is
-    // assembled where it is needed (need_jacobian).
-    const bool reuse         = parameters.reuse_jacobian;
-    bool       need_jacobian = !(reuse && jacobian_current);
-
-    try
-      {
-        timed_assemble(u, residual, need_jacobian);
-      }
-    catch (const SolverError &e)
-      {
-        result.failure = e.what();
-        return result;
-      }
-    double norm = checked_l2_norm(residual);
-    result.residual_norms.push_back(norm);
-    const double first_norm = norm;
-    // Newton's residual tests (the relative one from the first iteration).
-    auto residual_converged = [&]() {
-      return norm <= parameters.absolute_residual_tolerance
-             || (result.iterations > 0
-                 && norm
-                      <= parameters.relative_residual_tolerance * first_norm);
-    };
-
-    const bool use_energy = parameters.energy_line_search && energy
-                            && parameters.max_line_search_steps > 0;
-    // The energy at a state, +infinity where the model cannot evaluate it.
-    auto energy_at = [&](const VectorType &x) {
-      const auto start = Clock::now();
-      double     value = std::numeric_limits<double>::infinity();
-      try
-        {
-          value = energy(x);
-        }
-      catch (const SolverError &)
-        {
-        }
-      result.assembly_seconds += seconds_since(start);
-      return std::isfinite(value) ? value
-                                  : std::numeric_limits<double>::infinity();
-    };
-    double current_energy = use_energy ? energy_at(u) : 0.;
-
-    while (true)
-      {
-        if (!std::isfinite(norm))
-          {
-            result.failure = "residual is not finite";
-            return result;
-          }
-        if (residual_converged())
-          {
-            result.converged = true;
-            return result;
-          }
-        if (result.iterations == parameters.max_iterations)
-          {
-            result.failure
-              = "no convergence in " + std::to_string(parameters.max_iterations)
-                + " iterations (residual norm " + std::to_string(norm) + ")";
-            return result;
-          }
-
-        rhs.equ(-1., residual);
-        const auto start = Clock::now();
-        try
-          {
-            solve_jacobian(update, rhs, need_jacobian);
-          }
-        catch (const SolverError &e)
-          {
-            result.failure = e.what();
-            return result;
-          }
-        result.solve_seconds += seconds_since(start);
-        ++result.iterations;
-
-        // Energy line search where the update descends (R.du < 0; R is the
-        // energy gradient); else the residual norm.
-        const double slope    = use_energy && std::isfinite(current_energy)
-                                  ? residual * update
-                                  : 0.;
-        double       alpha    = 1;
-        bool         accepted = false;
-        if (slope < 0)
-          {
-            // Sums of many terms of either sign: allow their round-off.
-            const double round_off    = 1e-11 * std::abs(current_energy);
-            double       trial_energy = current_energy;
-            bool         assembled    = false;
-            for (unsigned int k = 0; k <= parameters.max_line_search_steps; ++k)
-              {
-                trial = u;
-                trial.add(alpha, update);
-                trial_energy = energy_at(trial);
-                if (trial_energy
-                    <= current_energy + 1e-4 * alpha * slope + round_off)
-                  {
-                    accepted = true;
-                    break;
-                  }
-                // Near a solution the energy's change falls below its
-                // round-off: a full step that halves the residual is
-                // Newton's quadratic phase, take it.
-                if (k == 0 && std::isfinite(trial_energy))
-                  try
-                    {
-                      timed_assemble(trial, trial_residual, !reuse);
-                      const double trial_norm = checked_l2_norm(trial_residual);
-                      // ... and the energy did not rise by more than the
-                      // first-order change (a saddle would).
-                      const double rise = trial_energy - current_energy;
-                      if (std::isfinite(trial_norm) && trial_norm < 0.5 * norm
-                          && rise <= -slope
-                                       + 1e-8
-                                           * std::max(std::abs(current_energy),
-                                                      std::abs(trial_energy)))
-                        {
-                          current_energy = trial_energy;
-                          assembled      = true;
-                          accepted       = true;
-                          break;
-                        }
-                    }
-                  catch (const SolverError &)
-                    {
-                    }
-                // Minimizer of the quadratic through E(0), E'(0), E(alpha),
-                // kept within [0.1, 0.5] alpha.
-                double next = 0.5 * alpha;
-                if (std::isfinite(trial_energy))
-                  {
-                    const double curvature
-                      = trial_energy - current_energy - slope * alpha;
-                    if (curvature > 0)
-                      next = -slope * alpha * alpha / (2 * curvature);
-                  }
-                alpha = std::clamp(next, 0.1 * alpha, 0.5 * alpha);
-              }
-            if (!accepted && std::isfinite(trial_energy))
-              accepted = true; // the last trial, as the residual search does
-            if (accepted && !assembled)
-              {
-                try
-                  {
-                    timed_assemble(trial, trial_residual, !reuse);
-                    accepted = std::isfinite(checked_l2_norm(trial_residual));
-                    current_energy = trial_energy;
-                  }
-                catch (const SolverError &e)
-                  {
-                    result.failure = e.what();
-                    accepted       = false;
-                  }
-              }
-          }
-        else
-          for (unsigned int k = 0; k <= parameters.max_line_search_steps; ++k)
-            {
-              // Backtracking: accept the first step length that lowers |R|
-              // (or the full step when the line search is off).
-              trial = u;
-              trial.add(alpha, update);
-              try
-                {
-                  // Without reuse the Jacobian is assembled with the trial
-                  // residual: the full step is almost always accepted, and
-                  // then it is the one the next iteration needs.
-                  timed_assemble(trial, trial_residual, !reuse);
-                  const double trial_norm = checked_l2_norm(trial_residual);
-                  if (std::isfinite(trial_norm)
-                      && (trial_norm < norm
-                          || parameters.max_line_search_steps == 0
-                          || k == parameters.max_line_search_steps))
-                    {
-                      accepted = std::isfinite(trial_norm);
-                      if (accepted && use_energy)
-                        current_energy = energy_at(trial);
-                      break;
-                    }
-                }
-              catch (const SolverError &e)
-                {
-                  result.failure = e.what();
-                }
-              alpha *= 0.5;
-            }
-        if (!accepted)
-          {
-            // A kept Jacobian may be what failed: try once more with a
-            // fresh one from the same iterate.
-            if (reuse && !need_jacobian)
-              {
-                need_jacobian = true;
-                try
-                  {
-                    timed_assemble(u, residual, true);
-                    result.failure.clear();
-                    continue;
-                  }
-                catch (const SolverError &)
-                  {
-                  }
-              }
-            if (result.failure.empty())
-              result.failure = "line search found no admissible step";
-            return result;
-          }
-        result.failure.clear();
-        u = trial;
-        residual.swap(trial_residual);
-        const double previous_norm = norm;
-        norm                       = checked_l2_norm(residual);
-        result.residual_norms.push_back(norm);
-        // A kept Jacobian serves while it contracts at full steps.
-        need_jacobian
-          = !(reuse && alpha == 1 && std::isfinite(norm)
-              && norm <= parameters.reuse_contraction * previous_norm);
-        if (parameters.verbose)
-          std::cout << "    Newton " << result.iterations << ": |R| = " << norm
-                    << ", |du| = " << checked_l2_norm(update) << ", step "
-                    << alpha << std::endl;
-
-        if (alpha == 1
-            && (checked_l2_norm(update)
-                  <= parameters.update_tolerance * (1 + checked_l2_norm(u))
-                || update.linfty_norm()
-                     <= parameters.displacement_tolerance * length_scale))
-          {
-            result.converged = std::isfinite(norm);
-            return result;
-          }
-        if (reuse && need_jacobian && !residual_converged())
-          try
-            {
-              timed_assemble(u, residual, true);
-            }
-          catch (const SolverError &e)
-            {
-              result.failure = e.what();
-              return result;
-            }
-      }
+    NewtonIteration iteration(parameters,
+                              u,
+                              assemble,
+                              solve_jacobian,
+                              energy,
+                              length_scale,
+                              jacobian_current);
+    return iteration.run();
   }
 } // namespace tissuefem::solvers

@@ -5,6 +5,7 @@
 #include <tissuefem/base/input_error.h>
 #include <tissuefem/base/timing.h>
 #include <tissuefem/time/error_norm.h>
+#include <tissuefem/time/first_order_system.h>
 #include <tissuefem/time/interface.h>
 #include <tissuefem/time/nodal.h>
 #include <tissuefem/time/radau_linear_systems.h>
@@ -60,24 +61,25 @@ namespace tissuefem::time
     {
       prm.enter_subsection("Time integration");
       prm.enter_subsection("ARKode");
-      method          = prm.get("Method");
-      order           = prm.get_integer("Order");
-      damping         = prm.get_double("Damping ratio");
-      jacobian_kind   = prm.get("Jacobian");
-      every_iteration = prm.get("Jacobian update") == "iteration";
-      max_steps       = prm.get_integer("Maximum steps per interval");
-      adaptive        = prm.get_bool("Adaptive step");
+      method               = prm.get("Method");
+      order                = prm.get_integer("Order");
+      const double damping = get_damping_ratio(prm);
+      jacobian_kind        = prm.get("Jacobian");
+      every_iteration      = prm.get("Jacobian update") == "iteration";
+      max_steps            = prm.get_integer("Maximum steps per interval");
+      adaptive             = prm.get_bool("Adaptive step");
       tolerances.parse_parameters(prm, "Time integration/ARKode/");
       prm.leave_subsection();
       prm.leave_subsection();
-      require(std::isfinite(damping) && damping >= 0,
-              "Time integration/ARKode/Damping ratio",
-              "must be >= 0");
+      check_damping_ratio(damping, "Time integration/ARKode/");
       require(method == "explicit" || order <= 5,
               "Time integration/ARKode/Order",
               "must be 2 to 5 for the implicit method (ARKode's DIRK "
               "tables), got "
                 + std::to_string(order));
+      system    = std::make_unique<FirstOrderSystem>(damping,
+                                                  "ARKode",
+                                                  " or backward Euler");
       stiffness = std::make_unique<Stiffness>(jacobian_kind);
     }
 
@@ -107,11 +109,7 @@ namespace tissuefem::time
                         Patterns::Integer(2, 8),
                         "Order of accuracy of ARKode's method table: 2-8 "
                         "explicit, 2-5 implicit.");
-      prm.declare_entry("Damping ratio",
-                        "0",
-                        Patterns::Double(0),
-                        "Mass-proportional damping gamma/m (1/s if SI), as "
-                        "in the damped central difference (Jeffrey eq 10).");
+      declare_damping_ratio(prm, first_order_damping_documentation);
       prm.declare_entry("Jacobian",
                         "analytical",
                         Patterns::Selection(Stiffness::choices()),
@@ -206,13 +204,13 @@ namespace tissuefem::time
       boundary_velocity /= h;
       double       *vp = local_entries(state.v);
       const double *bp = local_entries(boundary_velocity);
-      const double *fr = local_entries(free);
+      const double *fr = local_entries(system->free());
       for (unsigned int i = 0; i < local_size(state.v); ++i)
         if (!(fr[i] > 0))
           vp[i] = bp[i];
       // Damping work c int v^T m v dt by the trapezoidal rule over the
       // interval (an estimate: ARKode's stages are not seen here).
-      const double power_end = damping_power(state.v);
+      const double power_end = system->damping_power(state.v);
       report.damping_work    = 0.5 * h * (power_start + power_end);
       power_start            = power_end;
       derivative(target, y, f);
@@ -240,7 +238,6 @@ namespace tissuefem::time
     unsigned int    max_steps       = 100000;
     bool            adaptive        = true;
     bool            every_iteration = true;
-    double          damping         = 0;
     ErrorTolerances tolerances;
     Context        *context = nullptr;
 
@@ -248,11 +245,11 @@ namespace tissuefem::time
     bool       context_ready    = false;
     std::unique_ptr<SUNDIALS::ARKode<BlockVectorType>> ode;
     BlockVectorType                                    y, f, absolute;
-    const VectorType                                  *mass = nullptr;
-    VectorType                                         free;
-    std::unique_ptr<Stiffness>                         stiffness;
-    std::unique_ptr<RadauLinearSystems>                systems;
-    double                                             factorized_gamma = 0;
+    // Damping ratio, lumped mass and the mask of free entries.
+    std::unique_ptr<FirstOrderSystem>   system;
+    std::unique_ptr<Stiffness>          stiffness;
+    std::unique_ptr<RadauLinearSystems> systems;
+    double                              factorized_gamma = 0;
     /// ARKode's step and convergence-failure counts at the last evaluation
     /// of K (-1: none since the solver started).
     long int     stiffness_steps = -1, stiffness_failures = 0;
@@ -266,38 +263,25 @@ namespace tissuefem::time
     void
     set_up(const State &state)
     {
-      auto &solid = context->solid;
-      if (solid.has_hanging_nodes())
-        throw InputError("Parameter 'Time integration/Integrator': ARKode "
-                         "uses lumped masses, which are not condensed at "
-                         "hanging nodes; use it without mesh refinement");
-      mass = &solid.lumped_mass();
-      for (unsigned int i = 0; i < local_size(*mass); ++i)
-        if (!(local_entries(*mass)[i] > 0))
-          throw InputError("Parameter 'Time integration/Integrator': the "
-                           "row-sum lumped mass is not positive at some "
-                           "node (P2 simplices); use linear elements or "
-                           "backward Euler");
+      system->reinit(context->solid, state.u);
       const IndexSet owned = state.u.locally_owned_elements();
       y.reinit(std::vector<IndexSet>{owned, owned},
                parallel_tools::communicator());
       f.reinit(y);
       absolute.reinit(y);
-      free = state.u;
-      free = 1.;
-      solid.zero_constrained_entries(free);
       absolute.block(0) = tolerances.absolute_u;
       absolute.block(1) = tolerances.absolute_v;
       y.block(0)        = state.u;
       y.block(1)        = state.v;
-      systems = std::make_unique<RadauLinearSystems>(damping, 1., 0., 0.);
-      systems->reinit(*mass,
-                      free,
+      systems
+        = std::make_unique<RadauLinearSystems>(system->damping(), 1., 0., 0.);
+      systems->reinit(system->mass(),
+                      system->free(),
                       stiffness->assembled(),
                       context->linear_solver);
       factorized_gamma = 0;
       stiffness_steps  = -1;
-      power_start      = damping_power(state.v);
+      power_start      = system->damping_power(state.v);
     }
 
     /// f(t, y); returns ARKode's code: 0, or 1 (recoverable: a state the
@@ -317,7 +301,9 @@ namespace tissuefem::time
           return 1;
         }
       solid.external_force(t, external);
-      const double *m = local_entries(*mass), *fr = local_entries(free);
+      const double *m       = local_entries(system->mass());
+      const double *fr      = local_entries(system->free());
+      const double  damping = system->damping();
       const double *fi = local_entries(internal), *fe = local_entries(external);
       const double *v  = local_entries(x.block(1));
       double       *du = local_entries(fx.block(0));
@@ -328,18 +314,6 @@ namespace tissuefem::time
           dv[i] = fr[i] * ((fe[i] - fi[i]) / m[i] - damping * v[i]);
         }
       return 0;
-    }
-
-    double
-    damping_power(const VectorType &v) const
-    {
-      if (damping == 0)
-        return 0;
-      const double *m = local_entries(*mass), *vp = local_entries(v);
-      double        sum = 0;
-      for (unsigned int i = 0; i < local_size(v); ++i)
-        sum += m[i] * vp[i] * vp[i];
-      return damping * Utilities::MPI::sum(sum, parallel_tools::communicator());
     }
 
     /// Builds the ARKode object and its callbacks, starting from @p state.
@@ -478,7 +452,9 @@ namespace tissuefem::time
         stiffness->matrix().vmult(Kv, v.block(0));
       else
         Kv = 0.;
-      const double *m = local_entries(*mass), *fr = local_entries(free);
+      const double *m       = local_entries(system->mass());
+      const double *fr      = local_entries(system->free());
+      const double  damping = system->damping();
       const double *k = local_entries(Kv), *vv = local_entries(v.block(1));
       double       *ju = local_entries(Jv.block(0));
       double       *jv = local_entries(Jv.block(1));

@@ -1,6 +1,7 @@
 #include <tissuefem/base/input_error.h>
 #include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/base/timing.h>
+#include <tissuefem/time/first_order_system.h>
 #include <tissuefem/time/interface.h>
 #include <tissuefem/time/nodal.h>
 
@@ -42,7 +43,7 @@ namespace tissuefem::time
     {
       prm.enter_subsection("Time integration");
       prm.enter_subsection("Damped central difference");
-      damping        = prm.get_double("Damping ratio");
+      damping        = get_damping_ratio(prm);
       allow_unstable = prm.get_bool("Allow unstable step");
       threshold      = prm.get_double("Active region threshold");
       prm.leave_subsection();
@@ -51,21 +52,18 @@ namespace tissuefem::time
               "Time integration/Damped central difference/Active region "
               "threshold",
               "must be >= 0 (force units; 0 propagates every node)");
-      require(std::isfinite(damping) && damping >= 0,
-              "Time integration/Damped central difference/Damping ratio",
-              "must be >= 0");
+      check_damping_ratio(damping,
+                          "Time integration/Damped central difference/");
     }
 
     static void
     declare_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Damped central difference");
-      prm.declare_entry("Damping ratio",
-                        "0",
-                        Patterns::Double(0),
-                        "Mass-proportional damping gamma/m (1/s if SI): the "
-                        "damping force on node i is -gamma_i v_i with "
-                        "gamma_i = ratio * m_i (Jeffrey eq 10).");
+      declare_damping_ratio(prm,
+                            "Mass-proportional damping gamma/m (1/s if SI): "
+                            "the damping force on node i is -gamma_i v_i with "
+                            "gamma_i = ratio * m_i (Jeffrey eq 10).");
       prm.declare_entry("Active region threshold",
                         "0",
                         Patterns::Double(0),
@@ -143,25 +141,7 @@ namespace tissuefem::time
       const auto start = std::chrono::steady_clock::now();
       VectorType force;
       if (threshold > 0)
-        {
-          // Cells within two rings of the moving nodes: every node of
-          // the first ring (moving nodes and their neighbours) then gets
-          // its complete force, the only force a frozen node may wake on.
-          solid.mark_dofs_of(solid.cells_touching(active), complete);
-          const auto cells = solid.cells_touching(complete);
-          VectorType external;
-          // The nodes of the first ring get the same force either way;
-          // the others are frozen whatever their force. Where most cells
-          // are needed, all are evaluated, with all threads.
-          const auto n_cells = std::count(cells.begin(), cells.end(), true);
-          if (2 * n_cells > static_cast<long>(cells.size()))
-            solid.internal_force(state.u, force);
-          else
-            solid.internal_force_on(state.u, cells, force);
-          solid.external_force(state.time, external);
-          force.sadd(-1., 1., external);
-          cells_evaluated += n_cells / double(cells.size());
-        }
+        active_region_force(state, force);
       else
         net_force(state.u, state.time, force);
       report.assembly_seconds = seconds_since(start);
@@ -211,42 +191,7 @@ namespace tissuefem::time
       state.a.swap(a);
       state.time += h;
       report.dt = h;
-
-      if (!all_finite(state.u))
-        throw SolverError("the explicit scheme is unstable: it diverged at t = "
-                          + std::to_string(state.time) + " (step "
-                          + std::to_string(h) + ", estimated critical step "
-                          + std::to_string(critical_step)
-                          + "); nothing was written for this step");
-      // Slow exponential growth (a step just above the critical one)
-      // escapes the energy test below; no stable motion of a solid carries
-      // it a thousand times its size away.
-      if (state.u.linfty_norm() > 1e3 * solid.length_scale())
-        throw SolverError("the explicit scheme is unstable at t = "
-                          + std::to_string(state.time)
-                          + ": displacements exceed 1000 times the body's "
-                            "size (step "
-                          + std::to_string(h) + ", estimated critical step "
-                          + std::to_string(critical_step) + ")");
-      // The energy test costs a pass over the cells: every tenth step,
-      // against the energy ten steps before (a ten-thousandfold growth
-      // over ten steps is no motion of a damped or conservative solid
-      // under bounded loads; an unstable step grows far faster).
-      if (++steps_since_energy == 10)
-        {
-          steps_since_energy      = 0;
-          const double new_energy = total_energy(state.u, state.v);
-          if (energy > 0 && new_energy > 1e4 * energy)
-            throw SolverError("the explicit scheme is unstable at t = "
-                              + std::to_string(state.time)
-                              + ": stored plus kinetic energy grew from "
-                              + std::to_string(energy) + " to "
-                              + std::to_string(new_energy)
-                              + " in ten steps (step " + std::to_string(h)
-                              + ", estimated critical step "
-                              + std::to_string(critical_step) + ")");
-          energy = new_energy;
-        }
+      check_stability(state, h);
       return report;
     }
 
@@ -434,6 +379,76 @@ namespace tissuefem::time
         += Utilities::MPI::sum(propagated, parallel_tools::communicator())
            / context->solid.n_dofs();
       ++steps;
+    }
+
+    /**
+     * The net force of a step with an active region: internal forces on
+     * the cells within two rings of the moving nodes only. Every node of
+     * the first ring (moving nodes and their neighbours) then gets its
+     * complete force, the only force a frozen node may wake on.
+     */
+    void
+    active_region_force(const State &state, VectorType &force)
+    {
+      auto &solid = context->solid;
+      solid.mark_dofs_of(solid.cells_touching(active), complete);
+      const auto cells = solid.cells_touching(complete);
+      VectorType external;
+      // The nodes of the first ring get the same force either way;
+      // the others are frozen whatever their force. Where most cells
+      // are needed, all are evaluated, with all threads.
+      const auto n_cells = std::count(cells.begin(), cells.end(), true);
+      if (2 * n_cells > static_cast<long>(cells.size()))
+        solid.internal_force(state.u, force);
+      else
+        solid.internal_force_on(state.u, cells, force);
+      solid.external_force(state.time, external);
+      force.sadd(-1., 1., external);
+      cells_evaluated += n_cells / double(cells.size());
+    }
+
+    /// Stops the run (SolverError) at the signs of instability after a
+    /// step of size @p h to @p state: a displacement that is not finite or
+    /// far too large, or a stored plus kinetic energy that exploded.
+    void
+    check_stability(const State &state, const double h)
+    {
+      auto &solid = context->solid;
+      if (!all_finite(state.u))
+        throw SolverError("the explicit scheme is unstable: it diverged at t = "
+                          + std::to_string(state.time) + " (step "
+                          + std::to_string(h) + ", estimated critical step "
+                          + std::to_string(critical_step)
+                          + "); nothing was written for this step");
+      // Slow exponential growth (a step just above the critical one)
+      // escapes the energy test below; no stable motion of a solid carries
+      // it a thousand times its size away.
+      if (state.u.linfty_norm() > 1e3 * solid.length_scale())
+        throw SolverError("the explicit scheme is unstable at t = "
+                          + std::to_string(state.time)
+                          + ": displacements exceed 1000 times the body's "
+                            "size (step "
+                          + std::to_string(h) + ", estimated critical step "
+                          + std::to_string(critical_step) + ")");
+      // The energy test costs a pass over the cells: every tenth step,
+      // against the energy ten steps before (a ten-thousandfold growth
+      // over ten steps is no motion of a damped or conservative solid
+      // under bounded loads; an unstable step grows far faster).
+      if (++steps_since_energy == 10)
+        {
+          steps_since_energy      = 0;
+          const double new_energy = total_energy(state.u, state.v);
+          if (energy > 0 && new_energy > 1e4 * energy)
+            throw SolverError("the explicit scheme is unstable at t = "
+                              + std::to_string(state.time)
+                              + ": stored plus kinetic energy grew from "
+                              + std::to_string(energy) + " to "
+                              + std::to_string(new_energy)
+                              + " in ten steps (step " + std::to_string(h)
+                              + ", estimated critical step "
+                              + std::to_string(critical_step) + ")");
+          energy = new_energy;
+        }
     }
 
     /// F = f_ext(t) - f_int(u), the force driving the nodes.

@@ -7,6 +7,10 @@
 #include <tissuefem/study/runner.h>
 #include <tissuefem/study/variants.h>
 
+#include <chrono>
+#include <string>
+#include <vector>
+
 namespace tissuefem::problems
 {
   /**
@@ -19,8 +23,10 @@ namespace tissuefem::problems
    * and a summary; then optionally picks the cheapest variant that meets
    * an error tolerance and a step budget, and runs the scene with it.
    * Finished variants are kept: running the study again resumes it.
+   *
+   * Not a template on dim, unlike the other problems: the study itself
+   * computes nothing in space; each variant is a process of its own.
    */
-  template <int dim>
   class Study : public Interface
   {
   public:
@@ -48,7 +54,7 @@ namespace tissuefem::problems
     study::PickerParameters     picker;
     std::vector<study::Variant> variants;
     /// 'Dimension' of the scene (of its first variant), for orders in h.
-    unsigned int scene_dimension = dim;
+    unsigned int scene_dimension = 3;
 
     /// The run the errors are measured against ('Reference settings').
     study::Variant
@@ -79,5 +85,35 @@ namespace tissuefem::problems
     run_variant(const study::Variant &variant,
                 const std::string    &output,
                 bool                 &reused) const;
+
+    // The phases of run(), in this order.
+
+    /// 'Directory' and 'Runs directory'.
+    void
+    create_directories() const;
+
+    /// Runs (or reuses) the reference run if the errors are measured
+    /// against one; returns its directory, else an empty string.
+    std::string
+    run_reference() const;
+
+    /// Runs (or reuses) every variant, printing progress and an estimate
+    /// of the time left (from @p start); errors against the run in
+    /// @p reference. Throws Interrupted between variants on a signal.
+    std::vector<study::Row>
+    run_variants(const std::string                          &reference,
+                 const std::chrono::steady_clock::time_point start) const;
+
+    /// results.csv, convergence.txt, the charts and summary.txt (also on
+    /// the screen); @p what describes the quantity.
+    void
+    write_reports(const std::vector<study::Row> &rows,
+                  const std::string             &what) const;
+
+    /// The model choices for every tolerance and budget into choice.txt,
+    /// and the runs of the chosen variants if 'Run choice' asks for them.
+    void
+    run_choices(const std::vector<study::Row> &rows,
+                const std::string             &what) const;
   };
 } // namespace tissuefem::problems
