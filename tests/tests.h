@@ -12,6 +12,8 @@
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace tissuefem_tests
 {
@@ -44,13 +46,95 @@ namespace tissuefem_tests
     return count;
   }
 
-  /// Prints "name: ok" if @p condition holds, else a failure line with
-  /// @p detail, and counts the failure.
+  class EachModel;
+
+  /// The EachModel gathering checks now, if any.
+  inline EachModel *&
+  gathering()
+  {
+    static EachModel *active = nullptr;
+    return active;
+  }
+
   inline void
   check(const bool         condition,
         const std::string &name,
-        const std::string &detail = "")
+        const std::string &detail = "");
+
+  /**
+   * Checks repeated over every registered model, printed as one line per
+   * kind of check instead of one per model, so that the stored output
+   * does not change when a model is registered. While an EachModel lives,
+   * a check named "<prefix> <model><rest>" (model: the last one given to
+   * model()) is gathered under "<prefix> <label><rest>"; the destructor
+   * prints each such line once, in the order first seen, "ok" if every
+   * model passed, else FAILED naming the models and their details.
+   */
+  class EachModel
   {
+  public:
+    EachModel(const std::string &prefix,
+              const std::string &label = "each registered model")
+        : prefix(prefix)
+        , label(label)
+    {
+      gathering() = this;
+    }
+
+    ~EachModel()
+    {
+      gathering() = nullptr;
+      for (const auto &[name, failed] : results)
+        check(failed.empty(), name, failed);
+    }
+
+    /// The model the next checks are about.
+    void
+    model(const std::string &name)
+    {
+      current = name;
+    }
+
+    void
+    record(const bool         condition,
+           const std::string &name,
+           const std::string &detail)
+    {
+      const std::string head = prefix + " " + current;
+      const std::string key
+        = name.compare(0, head.size(), head) == 0
+            ? prefix + " " + label + name.substr(head.size())
+            : name;
+      auto found = results.begin();
+      while (found != results.end() && found->first != key)
+        ++found;
+      if (found == results.end())
+        {
+          results.emplace_back(key, "");
+          found = results.end() - 1;
+        }
+      if (!condition)
+        found->second += "[" + current + ": " + detail + "] ";
+    }
+
+  private:
+    std::string prefix, label, current;
+    /// (gathered name, failures so far) in the order first seen.
+    std::vector<std::pair<std::string, std::string>> results;
+  };
+
+  /// Prints "name: ok" if @p condition holds, else a failure line with
+  /// @p detail, and counts the failure; inside an EachModel, gathers it.
+  inline void
+  check(const bool         condition,
+        const std::string &name,
+        const std::string &detail)
+  {
+    if (EachModel *each = gathering())
+      {
+        each->record(condition, name, detail);
+        return;
+      }
     if (condition)
       std::cout << name << ": ok" << std::endl;
     else

@@ -99,11 +99,11 @@ for n in $ns; do
         step=$(awk -v c="$crit" -v f="$cfl" 'BEGIN { printf "%.6g", f * c }')
         set -- --set "Time integration/Integrator=damped central difference";;
       radau_iia)
-        set -- --set "Time integration/Integrator=radau iia";;
+        set -- --set "Time integration/Integrator=Radau IIA";;
       arkode_implicit)
-        set -- --set "Time integration/Integrator=arkode" --set "Time integration/ARKode/Method=implicit";;
+        set -- --set "Time integration/Integrator=ARKode" --set "Time integration/ARKode/Method=implicit";;
       arkode_explicit)
-        set -- --set "Time integration/Integrator=arkode" --set "Time integration/ARKode/Method=explicit";;
+        set -- --set "Time integration/Integrator=ARKode" --set "Time integration/ARKode/Method=explicit";;
     esac
     "$exe" "$prm" $threads "$@" \
       --set "Geometry/Subdivisions=10, 10, $n" --set "Geometry/Upper corner=0.1, 0.1, $height" \

@@ -105,9 +105,9 @@ scene() {
   case $key in
     backward_euler) set -- "Time integration/Integrator=backward Euler";;
     central_difference) set -- "Time integration/Integrator=damped central difference";;
-    radau_iia) set -- "Time integration/Integrator=radau iia";;
-    arkode_implicit) set -- "Time integration/Integrator=arkode" "Time integration/ARKode/Method=implicit";;
-    arkode_explicit) set -- "Time integration/Integrator=arkode" "Time integration/ARKode/Method=explicit";;
+    radau_iia) set -- "Time integration/Integrator=Radau IIA";;
+    arkode_implicit) set -- "Time integration/Integrator=ARKode" "Time integration/ARKode/Method=implicit";;
+    arkode_explicit) set -- "Time integration/Integrator=ARKode" "Time integration/ARKode/Method=explicit";;
   esac
   for a in "$@" "Materials/Young's modulus=$E" "Geometry/Subdivisions=$s, $s, $s"; do
     printf '%s\n' "$a"

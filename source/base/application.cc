@@ -65,7 +65,23 @@ namespace tissuefem
       throw InputError("Parameter file '" + file + "' cannot be opened");
     try
       {
-        prm.parse_input(file);
+        // ParameterHandler opens 'include' files relative to the working
+        // directory; a file's includes should not depend on where it is
+        // run from, so they are read relative to its own directory (as
+        // its mesh files are).
+        const auto                  absolute = std::filesystem::absolute(file);
+        const std::filesystem::path previous = std::filesystem::current_path();
+        std::filesystem::current_path(absolute.parent_path());
+        try
+          {
+            prm.parse_input(absolute.string());
+          }
+        catch (...)
+          {
+            std::filesystem::current_path(previous);
+            throw;
+          }
+        std::filesystem::current_path(previous);
       }
     catch (const ExceptionBase &e)
       {
@@ -102,13 +118,29 @@ namespace tissuefem
 
   namespace
   {
-    /// Checks every material a parameter file uses, in its dimension.
+    /// Checks every material a parameter file uses, in its dimension; with
+    /// @p every_registered, every registered model instead, with the
+    /// elastic constants of the file's first material (and the file's
+    /// model subsections and fibre direction): a list that grows by itself.
     template <int dim>
     bool
-    check_materials(ParameterHandler &prm)
+    check_materials(ParameterHandler &prm, const bool every_registered)
     {
       materials::MaterialParameters parameters;
       parameters.parse_parameters(prm);
+      if (every_registered)
+        {
+          const auto constants = parameters.constants[0];
+          parameters.model_names.clear();
+          parameters.constants.clear();
+          parameters.material_ids.clear();
+          for (const auto &[name, entry] :
+               materials::MaterialRegistry<dim>::instance().all())
+            {
+              parameters.model_names.push_back(name);
+              parameters.constants.push_back(constants);
+            }
+        }
       std::vector<materials::ConsistencyReport> reports;
       for (unsigned int i = 0; i < parameters.model_names.size(); ++i)
         {
@@ -153,6 +185,9 @@ namespace tissuefem
            "      check each material the file uses against its own energy\n"
            "      (finite differences, Taylor slopes, tangent methods,\n"
            "      symmetry, frame indifference) and print a table.\n"
+           "  tissuefem --check-all-materials FILE.prm [--set ...]\n"
+           "      the same for every registered model, with the elastic\n"
+           "      constants of the file's first material.\n"
            "  tissuefem --print-parameters\n"
            "      list every parameter with its default and documentation.\n"
            "  tissuefem --help | --version\n"
@@ -176,7 +211,8 @@ namespace tissuefem
     {
       std::vector<std::string> overrides;
       std::string              file, restart;
-      bool                     validate_only = false, check_material = false;
+      bool                     validate_only = false, check_material = false,
+           check_all_materials = false;
       /// The exit status when an option was answered at once (--help,
       /// --version, --print-parameters): nothing more is to be done.
       std::optional<int> finished;
@@ -237,6 +273,8 @@ namespace tissuefem
             line.validate_only = true;
           else if (a == "--check-material")
             line.check_material = true;
+          else if (a == "--check-all-materials")
+            line.check_material = line.check_all_materials = true;
           else if (a == "--set")
             {
               if (i + 1 == args.size())
@@ -274,19 +312,21 @@ namespace tissuefem
       if (line.check_material)
         {
           const int  dim = prm.get_integer("Dimension");
-          const bool ok  = dim == 1   ? check_materials<1>(prm)
-                           : dim == 2 ? check_materials<2>(prm)
-                                      : check_materials<3>(prm);
+          const bool all = line.check_all_materials;
+          const bool ok  = dim == 1   ? check_materials<1>(prm, all)
+                           : dim == 2 ? check_materials<2>(prm, all)
+                                      : check_materials<3>(prm, all);
           return ok ? 0 : 3;
         }
       problems::RunContext context;
       context.parameter_directory
         = std::filesystem::path(line.file).parent_path().string();
       context.restart_directory = line.restart;
-      auto problem
-        = problems::ProblemRegistry::instance().create(prm.get("Problem"),
-                                                       prm,
-                                                       context);
+      auto problem              = problems::ProblemRegistry::instance().create(
+        problems::ProblemRegistry::instance().canonical(prm.get("Problem"),
+                                                        "Problem"),
+        prm,
+        context);
       if (line.validate_only)
         {
           problem->setup();

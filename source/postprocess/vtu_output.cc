@@ -171,7 +171,7 @@ namespace tissuefem::postprocess
 
   TISSUEFEM_REGISTER_POSTPROCESSOR(
     VtuOutput,
-    "vtu",
+    "VTU",
     "solution-NNNNN.pvtu/.vtu and solution.pvd: the fields for ParaView "
     "every 'VTU interval' steps.")
 } // namespace tissuefem::postprocess

@@ -11,10 +11,12 @@
 #include <tissuefem/problems/floor_kernel.h>
 #include <tissuefem/problems/interface.h>
 #include <tissuefem/problems/neo_hookean_floor.h>
+#include <tissuefem/scene/scene.h>
 #include <tissuefem/solid/discretization.h>
 #include <tissuefem/solid/solid.h>
 
 #include <chrono>
+#include <filesystem>
 #include <iomanip>
 #include <iostream>
 
@@ -46,21 +48,22 @@ namespace tissuefem::problems
     run() override;
 
   private:
-    ParameterHandler              &prm;
-    materials::MaterialParameters  material_parameters;
-    boundary::BoundaryParameters   boundary_parameters;
-    solid::FiniteElementParameters fe_parameters;
-    std::string                    hexahedra, tetrahedra, mesh_file;
-    unsigned int                   repetitions;
-    double                         target_ms = 0;
+    ParameterHandler             &prm;
+    materials::MaterialParameters material_parameters;
+    std::string                   hexahedra, tetrahedra, mesh_file;
+    unsigned int                  repetitions;
+    double                        target_ms = 0;
 
     /// A generated box of @p cell_type with @p subdivisions.
     void
     benchmark_box(const std::string &cell_type,
                   const std::string &subdivisions) const;
+    /// The scene of this file with the 'Geometry' entries @p geometry
+    /// (name, value) set.
     void
-    benchmark_mesh(const geometry::GeometryParameters &geometry,
-                   const std::string                  &label) const;
+    benchmark_mesh(
+      const std::vector<std::pair<std::string, std::string>> &geometry,
+      const std::string                                      &label) const;
 
     /// Times internal-force assembly, residual only and with the Jacobian,
     /// of the floor kernel and of tissuefem with 1 and all threads.
@@ -114,8 +117,6 @@ namespace tissuefem::problems
       : prm(prm)
   {
     material_parameters.parse_parameters(prm);
-    boundary_parameters.parse_parameters(prm);
-    fe_parameters.parse_parameters(prm);
     prm.enter_subsection("Assembly benchmark");
     hexahedra   = prm.get("Hexahedra subdivisions");
     tetrahedra  = prm.get("Simplex subdivisions");
@@ -123,8 +124,12 @@ namespace tissuefem::problems
     mesh_file   = Utilities::trim(prm.get("Mesh file"));
     target_ms   = prm.get_double("Force update target");
     prm.leave_subsection();
-    if (!mesh_file.empty() && mesh_file.front() != '/')
-      mesh_file = context.parameter_directory + "/" + mesh_file;
+    // Relative to the parameter file (which may be in the working
+    // directory: then the parameter directory is empty).
+    if (!mesh_file.empty())
+      mesh_file
+        = (std::filesystem::path(context.parameter_directory) / mesh_file)
+            .string();
   }
 
 
@@ -133,15 +138,13 @@ namespace tissuefem::problems
   AssemblyBenchmark<dim>::benchmark_box(const std::string &cell_type,
                                         const std::string &subdivisions) const
   {
-    geometry::GeometryParameters geometry;
-    geometry.source             = "box";
-    geometry.cell_type          = cell_type;
-    geometry.lower_corner       = "0, 0, 0";
-    geometry.upper_corner       = "1, 1, 1";
-    geometry.subdivisions       = subdivisions;
-    geometry.scale              = 1;
-    geometry.global_refinements = 0;
-    benchmark_mesh(geometry,
+    benchmark_mesh({{"Source", "box"},
+                    {"Cell type", cell_type},
+                    {"Lower corner", "0, 0, 0"},
+                    {"Upper corner", "1, 1, 1"},
+                    {"Subdivisions", subdivisions},
+                    {"Scale", "1"},
+                    {"Global refinements", "0"}},
                    cell_type == "simplex" ? "P1 simplices" : "Q1 hypercubes");
   }
 
@@ -149,20 +152,19 @@ namespace tissuefem::problems
   template <int dim>
   void
   AssemblyBenchmark<dim>::benchmark_mesh(
-    const geometry::GeometryParameters &geometry,
-    const std::string                  &label) const
+    const std::vector<std::pair<std::string, std::string>> &geometry,
+    const std::string                                      &label) const
   {
-    parallel::shared::Triangulation<dim> triangulation(
-      parallel_tools::communicator(),
-      Triangulation<dim>::none,
-      false,
-      parallel::shared::Triangulation<dim>::partition_metis);
-    geometry::build_triangulation(geometry, triangulation);
-
-    solid::Discretization<dim>        discretization(triangulation,
-                                              fe_parameters,
-                                              dim);
-    boundary::BoundaryConditions<dim> boundary_conditions(boundary_parameters);
+    // The mesh, discretization and boundary conditions a run of this file
+    // would build; the benchmark then assembles with its own materials.
+    prm.enter_subsection("Geometry");
+    for (const auto &[name, value] : geometry)
+      prm.set(name, value);
+    prm.leave_subsection();
+    Scene<dim>  scene(prm);
+    const auto &triangulation       = scene.triangulation;
+    auto       &discretization      = *scene.discretization;
+    auto       &boundary_conditions = *scene.boundary_conditions;
 
     // A smooth, finite deformation: stretches, shears and a twist.
     VectorType u;
@@ -471,12 +473,11 @@ namespace tissuefem::problems
       benchmark_box("simplex", tetrahedra);
     if (!mesh_file.empty())
       {
-        geometry::GeometryParameters geometry;
-        geometry.source             = "file";
-        geometry.mesh_file          = mesh_file;
-        geometry.scale              = 1;
-        geometry.global_refinements = 0;
-        benchmark_mesh(geometry, "mesh file " + mesh_file);
+        benchmark_mesh({{"Source", "file"},
+                        {"Mesh file", mesh_file},
+                        {"Scale", "1"},
+                        {"Global refinements", "0"}},
+                       "mesh file " + mesh_file);
       }
   }
 

@@ -331,7 +331,16 @@ namespace tissuefem::problems
   template class Poisson<3>;
 
   TISSUEFEM_REGISTER_PROBLEM(Poisson,
-                             "poisson",
+                             "Poisson",
                              "variable-coefficient Poisson equation with an "
                              "error table over refinement (verification).")
+
+  // Files written before the name was cased as the equation's.
+  namespace
+  {
+    const bool poisson_earlier_spelling = [] {
+      ProblemRegistry::instance().add_alias("poisson", "Poisson");
+      return true;
+    }();
+  } // namespace
 } // namespace tissuefem::problems

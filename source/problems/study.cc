@@ -481,22 +481,11 @@ namespace tissuefem::problems
   }
 
 
-  // Study does not depend on the dimension (its variants are separate
-  // processes that read their own), so it is registered once, not through
-  // TISSUEFEM_REGISTER_PROBLEM's Study<dim> for each dimension.
-  namespace
-  {
-    const bool study_registered = [] {
-      ProblemRegistry::instance().add(
-        "study",
-        "runs an elasticity scene over variants and charts error against cost "
-        "(see 'Study').",
-        &Study::declare_parameters,
-        [](ParameterHandler &prm, const RunContext &context) {
-          return std::unique_ptr<Interface>(
-            std::make_unique<Study>(prm, context));
-        });
-      return true;
-    }();
-  } // namespace
+  // The study does not depend on the dimension: its variants are separate
+  // processes that read their own.
+  TISSUEFEM_REGISTER_PROBLEM_WITHOUT_DIMENSION(
+    Study,
+    "study",
+    "runs an elasticity scene over variants and charts error against cost "
+    "(see 'Study').")
 } // namespace tissuefem::problems

@@ -102,7 +102,8 @@ namespace tissuefem::solid
   template <int dim>
   void
   Discretization<dim>::distribute(
-    const boundary::BoundaryConditions<dim> *boundary_conditions)
+    const boundary::BoundaryConditions<dim> *boundary_conditions,
+    const std::vector<unsigned int>         *held_vertices)
   {
     dof_handler.distribute_dofs(*fe);
     locally_owned = dof_handler.locally_owned_dofs();
@@ -131,11 +132,9 @@ namespace tissuefem::solid
                                                    fe->n_components()),
                                                  constraints,
                                                  d.mask);
-    if (boundary_conditions && boundary_conditions->held)
+    if (held_vertices)
       for (const auto &[dof, vertex, component] :
-           held_vertex_dofs(dof_handler,
-                            boundary_conditions->held->vertices,
-                            locally_relevant))
+           held_vertex_dofs(dof_handler, *held_vertices, locally_relevant))
         if (!constraints.is_constrained(dof))
           constraints.add_line(dof);
     constraints.close();

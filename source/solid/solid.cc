@@ -137,7 +137,8 @@ namespace tissuefem::solid
   Solid<dim>::setup()
   {
     signals.about_to_change();
-    discretization.distribute(&boundary_conditions);
+    discretization.distribute(&boundary_conditions,
+                              held ? &held->vertices : nullptr);
     const auto                       &dof_handler = discretization.dof_handler;
     TrilinosWrappers::SparsityPattern sparsity(discretization.locally_owned,
                                                discretization.locally_owned,
@@ -155,9 +156,9 @@ namespace tissuefem::solid
     lumped.reset();
     groups.clear();
     held_dofs.clear();
-    if (boundary_conditions.held)
+    if (held)
       held_dofs = held_vertex_dofs(dof_handler,
-                                   boundary_conditions.held->vertices,
+                                   held->vertices,
                                    discretization.locally_relevant);
     cache.build(discretization, body_force_present);
     find_dirichlet_points();

@@ -87,9 +87,9 @@ namespace tissuefem::solid
                   ? condition.displacement->value(entry.point, entry.component)
                   : entry.value);
       }
-    if (boundary_conditions.held)
+    if (held)
       {
-        const auto  motion = boundary_conditions.held->motion(time);
+        const auto  motion = held->motion(time);
         const auto &owned  = discretization.locally_owned;
         for (const auto &[dof, vertex, component] : held_dofs)
           visit(dof,
@@ -182,7 +182,7 @@ namespace tissuefem::solid
                           vertices,
                           discretization.locally_relevant))
       held_start[dof] = ghosted[dof];
-    boundary_conditions.held = {vertices, motion};
+    held = Held{vertices, motion};
     setup();
   }
 
@@ -191,7 +191,7 @@ namespace tissuefem::solid
   void
   Solid<dim>::release()
   {
-    boundary_conditions.held.reset();
+    held.reset();
     setup();
   }
 

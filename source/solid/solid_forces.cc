@@ -189,7 +189,7 @@ namespace tissuefem::solid
                          const double      time)
   {
     std::vector<double> force(dim, 0.);
-    if (!boundary_conditions.held)
+    if (!held)
       return force;
     VectorType residual;
     unconstrained_residual(u, acceleration, time, residual);

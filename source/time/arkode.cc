@@ -519,8 +519,17 @@ namespace tissuefem::time
 
   TISSUEFEM_REGISTER_INTEGRATOR(
     ARKodeIntegrator,
-    "arkode",
+    "ARKode",
     "SUNDIALS ARKode through deal.II: adaptive explicit Runge-Kutta or "
     "adaptive diagonally implicit Runge-Kutta with Newton's method, lumped "
     "mass and mass-proportional damping.")
+
+  // Files written before the name was cased as SUNDIALS spells it.
+  namespace
+  {
+    const bool arkode_earlier_spelling = [] {
+      IntegratorRegistry::instance().add_alias("arkode", "ARKode");
+      return true;
+    }();
+  } // namespace
 } // namespace tissuefem::time

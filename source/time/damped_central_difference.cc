@@ -15,9 +15,10 @@ namespace tissuefem::time
 {
   /**
    * Jeffrey's damped explicit scheme with variable step (report eqs 10-11
-   * and appendix A; solved for the new position as ERRATA, Jeffrey item 9,
-   * gives it): with the row-sum lumped mass m, mass-proportional damping
-   * gamma = c m, the old step dt and the new step eta dt,
+   * and appendix A; solved for the new position as erratum J9
+   * (doc/references.md), gives it): with the row-sum lumped mass m,
+   * mass-proportional damping gamma = c m, the old step dt and the new step eta
+   * dt,
    *
    *   u+ = [eta (eta + 1) dt^2 F / m + (2 (eta + 1) - c (eta^2 - 1) dt) u
    *         - eta (2 - c eta dt) u-] / (2 + c dt),   F = f_ext(t) - f_int(u),

@@ -163,8 +163,17 @@ namespace tissuefem::time
 
   TISSUEFEM_REGISTER_INTEGRATOR(
     RadauIIA,
-    "radau iia",
+    "Radau IIA",
     "the 3-stage Radau IIA implicit Runge-Kutta method (order 5, adaptive "
     "step; Jeffrey appendix D) with lumped mass and mass-proportional "
     "damping; analytical, numerical or simplified Jacobian.")
+
+  // Files written before the name was cased as the method's.
+  namespace
+  {
+    const bool radau_earlier_spelling = [] {
+      IntegratorRegistry::instance().add_alias("radau iia", "Radau IIA");
+      return true;
+    }();
+  } // namespace
 } // namespace tissuefem::time

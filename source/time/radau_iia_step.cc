@@ -18,9 +18,9 @@ namespace tissuefem::time
   namespace
   {
     // The 3-stage Radau IIA method (Hairer and Wanner, Solving ODEs II,
-    // IV.5 and their code RADAU5; Jeffrey appendix D with ERRATA item 8):
-    // nodes c, and the transformation T with T^-1 A^-1 T = [gamma 0 0; 0
-    // alpha -beta; 0 beta alpha].
+    // IV.5 and their code RADAU5; Jeffrey appendix D with erratum J8,
+    // doc/references.md): nodes c, and the transformation T with T^-1 A^-1 T =
+    // [gamma 0 0; 0 alpha -beta; 0 beta alpha].
     const double s6 = std::sqrt(6.);
     const double c1 = (4. - s6) / 10., c2 = (4. + s6) / 10.;
     const double gamma_hat = 3.637834252744496, alpha_hat = 2.681082873627752,
@@ -49,7 +49,8 @@ namespace tissuefem::time
                                      (-2. - 3. * s6) / 225.},
                                     {(16. - s6) / 36., (16. + s6) / 36., 1. / 9.}};
     const Tensor<2, 3> inverse_a = invert(Tensor<2, 3>(A));
-    // The error estimate's weights (ERRATA item 8, D.22, times gamma_hat).
+    // The error estimate's weights (erratum J8, doc/references.md, D.22, times
+    // gamma_hat).
     const double dd1 = -(13. + 7. * s6) / 3., dd2 = (-13. + 7. * s6) / 3.,
                  dd3 = -1. / 3.;
     // Quadrature weights b_i = a_3i.
@@ -121,7 +122,8 @@ namespace tissuefem::time
       }
 
     // Starting values: the last step's collocation polynomial extended
-    // (RADAU5; Jeffrey D.19, D.24-D.26 with ERRATA item 8), else zero.
+    // (RADAU5; Jeffrey D.19, D.24-D.26 with erratum J8, doc/references.md),
+    // else zero.
     for (unsigned int i = 0; i < 3; ++i)
       {
         zu[i] = 0.;
@@ -368,7 +370,8 @@ namespace tissuefem::time
              * Utilities::MPI::sum(work, parallel_tools::communicator());
       }
     // The collocation polynomial in Newton's form for the next starting
-    // values (RADAU5's CONT; ERRATA item 8 corrects D.26's divisor).
+    // values (RADAU5's CONT; erratum J8, doc/references.md corrects D.26's
+    // divisor).
     for (auto [z, p] : {std::make_pair(&zu, &pu), std::make_pair(&zv, &pv)})
       {
         auto      &Z = *z;

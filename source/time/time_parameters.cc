@@ -78,7 +78,9 @@ namespace tissuefem::time
   TimeParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Time integration");
-    integrator         = prm.get("Integrator");
+    integrator
+      = IntegratorRegistry::instance().canonical(prm.get("Integrator"),
+                                                 "Time integration/Integrator");
     end_time           = prm.get_double("End time");
     time_step          = prm.get_double("Time step");
     max_step_halvings  = prm.get_integer("Maximum step halvings");

@@ -26,7 +26,7 @@ using namespace tissuefem;
 namespace
 {
   const std::string scene = tissuefem_tests::one_element_bar(R"(
-      set Integrator = arkode
+      set Integrator = ARKode
       subsection ARKode
         set Damping ratio = 0.5
       end

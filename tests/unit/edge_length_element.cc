@@ -157,8 +157,12 @@ namespace
   check_all(const ParameterHandler &prm)
   {
     const auto constants = ElasticConstants::from_young_poisson(20000, 0.4);
+    tissuefem_tests::EachModel each(std::to_string(dim) + "D",
+                                    "each registered model with an edge-length "
+                                    "form");
     for (const auto &[name, entry] : MaterialRegistry<dim>::instance().all())
       {
+        each.model(name);
         const auto model = entry.create(constants, prm);
         if (model->has_edge_length_form())
           check_model<dim>(name, *model);

@@ -150,10 +150,12 @@ namespace
   void
   compare_all()
   {
+    tissuefem_tests::EachModel each(std::to_string(dim) + "D");
     for (const auto &[model, entry] :
          materials::MaterialRegistry<dim>::instance().all())
       {
         (void)entry;
+        each.model(model);
         if (compare<dim>(model, "1; 0; 0", ""))
           compare<dim>(model,
                        "1; x*x + y; 0.5",

@@ -6,7 +6,7 @@
 // linear elasticity); inverted F is sampled for the models that admit it.
 // Then, in 2D, the AD tangent of the robust neo-Hookean model against the
 // problem session's hand-derived eq 20 as its Matlab eval_dq_du builds it,
-// corrected as ERRATA items 6-7 say.
+// corrected as errata T6 and T7 (doc/references.md) say.
 
 #include <deal.II/base/parameter_handler.h>
 
@@ -28,8 +28,10 @@ namespace
   void
   check_all_models(const ParameterHandler &prm)
   {
+    tissuefem_tests::EachModel each(std::to_string(dim) + "D");
     for (const auto &[name, entry] : MaterialRegistry<dim>::instance().all())
       {
+        each.model(name);
         const auto model  = entry.create(constants, prm);
         const auto report = check_consistency<dim>(name, *model, constants.mu);
         tissuefem_tests::check(report.passes(),
@@ -42,9 +44,10 @@ namespace
   }
 
   /// dP_ik/dF_jm as the problem session's eval_dq_du assembles it for the
-  /// robust neo-Hookean model (eq 20), with ERRATA items 6 and 7 applied:
-  /// the c1 term is the outer product of rows i and j of dJ/dF, and mu is
-  /// added to both diagonal entries when i == j, after the assignment.
+  /// robust neo-Hookean model (eq 20), with errata T6 and T7
+  /// (doc/references.md) applied: the c1 term is the outer product of rows i
+  /// and j of dJ/dF, and mu is added to both diagonal entries when i == j,
+  /// after the assignment.
   Tensor<4, 2>
   problem_session_tangent(const Tensor<2, 2> &F)
   {

@@ -28,7 +28,7 @@ using namespace tissuefem;
 namespace
 {
   const std::string scene = tissuefem_tests::one_element_bar(R"(
-      set Integrator = radau iia
+      set Integrator = Radau IIA
       subsection Radau IIA
         set Absolute tolerance = 1e-13
         set Absolute velocity tolerance = 1e-13

@@ -1,12 +1,15 @@
 #pragma once
 
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
 #include <tissuefem/base/input_error.h>
 
 #include <functional>
+#include <iostream>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <type_traits>
 
@@ -55,23 +58,60 @@ namespace tissuefem
       entries[name] = Entry{description, declarer, factory};
     }
 
-    /// Names separated by '|', for a Patterns::Selection.
+    /**
+     * Accepts @p old_name, an earlier spelling, for @p name, so that
+     * users' parameter files keep working after a registered name was
+     * recased; canonical() names the new spelling in a notice.
+     */
+    void
+    add_alias(const std::string &old_name, const std::string &name)
+    {
+      aliases[old_name] = name;
+    }
+
+    /// Names separated by '|', for a Patterns::Selection: the registered
+    /// ones and the earlier spellings still accepted.
     std::string
     selection_pattern() const
     {
       std::string result;
       for (const auto &[name, entry] : entries)
         result += (result.empty() ? "" : "|") + name;
+      for (const auto &[old_name, name] : aliases)
+        result += "|" + old_name;
       return result;
     }
 
-    /// One line per choice: "name: description", for parameter documentation.
+    /**
+     * The registered name for @p name: itself, or the name an earlier
+     * spelling stands for, with a one-line notice on stderr (process 0)
+     * naming @p parameter and the new spelling.
+     */
+    std::string
+    canonical(const std::string &name, const std::string &parameter) const
+    {
+      const auto alias = aliases.find(name);
+      if (alias == aliases.end())
+        return name;
+      if (noticed.insert(name).second
+          && dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+        std::cerr << "tissuefem: notice: " << parameter << " = '" << name
+                  << "' is now spelled '" << alias->second
+                  << "'; the old spelling is still accepted." << std::endl;
+      return alias->second;
+    }
+
+    /// One line per choice: "name: description", for parameter
+    /// documentation; then the earlier spellings still accepted.
     std::string
     documentation() const
     {
       std::string result;
       for (const auto &[name, entry] : entries)
         result += "'" + name + "': " + entry.description + " ";
+      for (const auto &[old_name, name] : aliases)
+        result
+          += "('" + old_name + "': the earlier spelling of '" + name + "'.) ";
       return result;
     }
 
@@ -87,7 +127,10 @@ namespace tissuefem
     std::unique_ptr<Interface>
     create(const std::string &name, FactoryArguments... arguments) const
     {
-      const auto it = entries.find(name);
+      auto it = entries.find(name);
+      if (it == entries.end())
+        if (const auto alias = aliases.find(name); alias != aliases.end())
+          it = entries.find(alias->second);
       if (it == entries.end())
         throw InputError("'" + name + "' is not a known choice; known are: "
                          + selection_pattern());
@@ -102,6 +145,10 @@ namespace tissuefem
 
   private:
     std::map<std::string, Entry> entries;
+    /// Earlier spelling -> registered name.
+    std::map<std::string, std::string> aliases;
+    /// Earlier spellings already named in a notice (one notice each).
+    mutable std::set<std::string> noticed;
   };
 
 

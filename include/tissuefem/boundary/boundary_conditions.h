@@ -5,9 +5,7 @@
 #include <deal.II/fe/component_mask.h>
 #include <deal.II/grid/tria.h>
 
-#include <functional>
 #include <memory>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -72,18 +70,5 @@ namespace tissuefem::boundary
     Tensor<1, dim>                 gravity;
     std::unique_ptr<Function<dim>> initial_displacement;
     std::unique_ptr<Function<dim>> initial_velocity;
-
-    /**
-     * Vertices held by a tool (the user's grasp): every displacement
-     * component of each is prescribed, u = u_start + motion(t), with
-     * u_start its displacement when it was grasped. Set through
-     * solid::Solid::hold() and release(), which rebuild the constraints.
-     */
-    struct Held
-    {
-      std::vector<unsigned int>                   vertices;
-      std::function<Tensor<1, dim>(const double)> motion;
-    };
-    std::optional<Held> held;
   };
 } // namespace tissuefem::boundary

@@ -12,10 +12,10 @@ namespace tissuefem::materials
    *
    *   Psi(F) = mu/2 (F_ij F_ij - d) - mu g(J) + lambda/2 g(J)^2
    *
-   * (Teran's lecture notes eq 2.8a with ERRATA item 1: the Frobenius norm,
-   * minus the dimension d). LogVolume is g = log J; CubicVolume is the cubic
-   * Taylor expansion r(J) of log J about J = 1 (eq 2.9a-c), finite for every
-   * J, so the model stays defined through inversion.
+   * (Teran's lecture notes eq 2.8a with erratum T1 in doc/references.md: the
+   * Frobenius norm, minus the dimension d). LogVolume is g = log J; CubicVolume
+   * is the cubic Taylor expansion r(J) of log J about J = 1 (eq 2.9a-c), finite
+   * for every J, so the model stays defined through inversion.
    */
   struct LogVolume
   {

@@ -14,9 +14,9 @@ namespace tissuefem::materials
    *
    * with (lambda, mu) the Lame pair across the fibre (from the Materials
    * subsection) and Delta lambda = lambda^L - lambda, Delta mu = mu^L - mu
-   * from the pair (E^L, nu^L) along the unit fibre direction a (ERRATA item
-   * 1 on the names lambda^L, lambda^T). Shearing and cross-stretching terms
-   * are neglected, as in the report.
+   * from the pair (E^L, nu^L) along the unit fibre direction a (erratum J1 in
+   * doc/references.md; item 1 on the names lambda^L, lambda^T). Shearing and
+   * cross-stretching terms are neglected, as in the report.
    */
   template <int dim>
   class TransverselyIsotropic

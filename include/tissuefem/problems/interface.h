@@ -74,3 +74,25 @@ namespace tissuefem::problems
       return true;                                              \
     }();                                                        \
   }
+
+/// Registers a problem that does not depend on the dimension (a class, not
+/// a template: it computes nothing in space itself, e.g. the study, whose
+/// variants are processes of their own) at the end of its source file.
+#define TISSUEFEM_REGISTER_PROBLEM_WITHOUT_DIMENSION(Problem,       \
+                                                     name,          \
+                                                     description)   \
+  namespace                                                         \
+  {                                                                 \
+    const bool tissuefem_registered_##Problem = [] {                \
+      ::tissuefem::problems::ProblemRegistry::instance().add(       \
+        name,                                                       \
+        description,                                                \
+        &Problem::declare_parameters,                               \
+        [](::dealii::ParameterHandler              &prm,            \
+           const ::tissuefem::problems::RunContext &context) {      \
+          return std::unique_ptr<::tissuefem::problems::Interface>( \
+            std::make_unique<Problem>(prm, context));               \
+        });                                                         \
+      return true;                                                  \
+    }();                                                            \
+  }

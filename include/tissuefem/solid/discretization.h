@@ -63,9 +63,11 @@ namespace tissuefem::solid
 
     /// Numbers the degrees of freedom of the current mesh and builds the
     /// constraints: hanging nodes, and zero for every component that
-    /// @p boundary_conditions prescribes (none if it is null).
+    /// @p boundary_conditions prescribes (none if it is null), and every
+    /// component of the @p held_vertices (a tool's grasp; none if null).
     void
-    distribute(const boundary::BoundaryConditions<dim> *boundary_conditions);
+    distribute(const boundary::BoundaryConditions<dim> *boundary_conditions,
+               const std::vector<unsigned int> *held_vertices = nullptr);
 
     /// A distributed vector of the degrees of freedom this process owns;
     /// with @p ghosted, read-only copies of those it sees as well.

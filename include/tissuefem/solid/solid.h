@@ -12,6 +12,7 @@
 #include <tissuefem/solid/linear_simplex_kernel.h>
 #include <tissuefem/solid/operators.h>
 
+#include <functional>
 #include <map>
 #include <optional>
 
@@ -143,8 +144,8 @@ namespace tissuefem::solid
     /**
      * Holds the listed triangulation vertices from now on: all their
      * displacement components follow u_start + motion(t), u_start their
-     * displacement in @p u. Rebuilds constraints and matrix layout like
-     * setup(): reset linear solvers first, tell integrators after.
+     * displacement in @p u. Rebuilds the constraints through setup(), which
+     * announces the change on 'signals' (the caller tells nobody else).
      */
     void
     hold(const std::vector<unsigned int>                   &vertices,
@@ -302,6 +303,20 @@ namespace tissuefem::solid
     std::optional<MatrixType>                         mass;
     std::optional<VectorType>                         lumped;
     std::vector<std::vector<types::global_dof_index>> groups;
+    /**
+     * What a tool holds, between hold() and release(): every displacement
+     * component of each vertex is prescribed, u = u_start + motion(t),
+     * with u_start its displacement when grasped. The tool chooses the
+     * vertices and owns the motion; the solid enforces them as constraints
+     * while they are held (they are not part of the user's boundary
+     * conditions).
+     */
+    struct Held
+    {
+      std::vector<unsigned int>                   vertices;
+      std::function<Tensor<1, dim>(const double)> motion;
+    };
+    std::optional<Held> held;
     /// (dof, vertex, component) of the held vertices, locally relevant,
     /// and their displacement when grasped.
     std::vector<std::tuple<types::global_dof_index, unsigned int, unsigned int>>
