@@ -289,6 +289,67 @@ namespace tissuefem::solid
                          ScratchType                     &s,
                          CopyType                        &copy) const;
 
+    /// The pieces of assemble()'s cell worker (solid_assembly.cc), in the
+    /// order it calls them.
+    /// Resets @p copy for cache cell @p c and gathers its displacement and
+    /// inertia coefficients into @p s.
+    template <typename ScratchType, typename CopyType>
+    void
+    start_cell(const Request     &request,
+               const unsigned int c,
+               ScratchType       &s,
+               CopyType          &copy) const;
+
+    /// The stresses (and tangents) at the cell's quadrature points, into
+    /// s.P and s.A, for the displacement and mean-dilatation formulations;
+    /// for every formulation, marks the cell inverted (copy.inverted_det)
+    /// where the model cannot represent det F <= 0.
+    template <typename ScratchType, typename CopyType>
+    void
+    cell_stresses(const Request                   &request,
+                  const materials::Interface<dim> &material,
+                  const unsigned int               c,
+                  ScratchType                     &s,
+                  CopyType                        &copy) const;
+
+    /// Adds, point by point, the elastic terms of s.P and s.A (if
+    /// @p elastic), the loads and the inertia (density @p rho).
+    template <typename ScratchType, typename CopyType>
+    void
+    add_point_terms(const Request     &request,
+                    const unsigned int c,
+                    const double       rho,
+                    const bool         elastic,
+                    ScratchType       &s,
+                    CopyType          &copy) const;
+
+    /// The mean-dilatation Jacobian's coupling of all points through theta.
+    template <typename ScratchType, typename CopyType>
+    void
+    add_mean_dilatation_coupling(const ScratchType &s, CopyType &copy) const;
+
+    /// The edge-length element's forces (and stiffness) of the cell.
+    template <typename ScratchType, typename CopyType>
+    void
+    add_edge_length_cell(const materials::Interface<dim> &material,
+                         const unsigned int               c,
+                         const bool                       jacobian,
+                         ScratchType                     &s,
+                         CopyType                        &copy) const;
+
+    /// The Neumann tractions on the cell's boundary faces.
+    template <typename ScratchType, typename CopyType>
+    void
+    add_tractions(const unsigned int c, ScratchType &s, CopyType &copy) const;
+
+    /// Adds a cell's rows to the residual (and Jacobian): in place where
+    /// no constraint touches them, else through the request's rows.
+    template <typename CopyType>
+    void
+    add_to_global(const Request  &request,
+                  const CopyType &copy,
+                  VectorType     &residual);
+
     Discretization<dim>               &discretization;
     const materials::MaterialSet<dim> &materials;
     boundary::BoundaryConditions<dim> &boundary_conditions;
