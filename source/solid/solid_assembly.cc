@@ -215,11 +215,11 @@ namespace tissuefem::solid
   template <int dim>
   template <typename ScratchType, typename CopyType>
   void
-  Solid<dim>::cell_stresses(const Request                   &request,
-                            const materials::Interface<dim> &material,
-                            const unsigned int               c,
-                            ScratchType                     &s,
-                            CopyType                        &copy) const
+  Solid<dim>::cell_deformation(const Request                   &request,
+                               const materials::Interface<dim> &material,
+                               const unsigned int               c,
+                               ScratchType                     &s,
+                               CopyType                        &copy) const
   {
     if (materials.mean_dilatation_formulation())
       {
@@ -227,55 +227,43 @@ namespace tissuefem::solid
           material, c, copy.cell_index, request.jacobian, s, copy);
         return;
       }
-    const auto method  = materials.tangent_method();
-    const bool project = materials.project_tangent();
-    // The edge-length element adds its forces itself (add_edge_length_cell)
-    // but, like the displacement formulation, refuses inverted points of a
-    // model that cannot represent them.
-    const bool stresses = !materials.edge_length_formulation();
+    // F at every point first: an inverted point (where the model cannot
+    // represent it) discards the whole cell, and the report gives the
+    // cell's smallest det F.
     for (unsigned int q = 0; q < cache.n_q; ++q)
       {
-        Tensor<2, dim> F = unit_symmetric_tensor<dim>();
+        Tensor<2, dim> &F = s.F[q];
+        F                 = unit_symmetric_tensor<dim>();
         for (unsigned int k = 0; k < cache.n_scalar; ++k)
           F += outer_product(s.U[k], cache.gradient(c, q, k));
         const double det = determinant(F);
         if (det <= 0 && !material.admits_inversion())
-          {
-            // The smallest det F of the cell goes to the report.
-            copy.inverted_det = std::min(copy.inverted_det, det);
-            continue;
-          }
-        if (!stresses)
-          continue;
-        const Tensor<1, dim> &a = fibre_field.at(copy.cell_index, q);
-        if (request.jacobian)
-          {
-            material.stress_and_tangent(F, a, s.P[q], s.A[q], method);
-            if (project)
-              materials::project_to_positive_definite(s.A[q]);
-          }
-        else
-          s.P[q] = material.stress(F, a);
+          copy.inverted_det = std::min(copy.inverted_det, det);
       }
   }
 
 
   template <int dim>
-  template <typename ScratchType, typename CopyType>
+  template <typename ScratchType, typename CopyType, typename StressAt>
   void
   Solid<dim>::add_point_terms(const Request     &request,
                               const unsigned int c,
                               const double       rho,
                               const bool         elastic,
+                              const StressAt    &stress_at,
                               ScratchType       &s,
                               CopyType          &copy) const
   {
     const unsigned int n_scalar      = cache.n_scalar;
     const double      *JxW           = cache.JxW(c);
     const double       mass_jacobian = request.mass_jacobian_coefficient * rho;
+    Tensor<2, dim>     P;
+    Tensor<4, dim>     A;
     Tensor<3, dim>     B;
     for (unsigned int q = 0; q < cache.n_q; ++q)
       {
+        if (elastic)
+          stress_at(q, P, A);
         // Loads per unit reference volume, with the inertial term rho w
         // acting like a load.
         Tensor<1, dim> load;
@@ -294,8 +282,6 @@ namespace tissuefem::solid
           for (unsigned int k = 0; k < n_scalar; ++k)
             load -= (rho * cache.values[q * n_scalar + k]) * s.W[k];
 
-        const Tensor<2, dim> &P = s.P[q];
-        const Tensor<4, dim> &A = s.A[q];
         for (unsigned int k = 0; k < n_scalar; ++k)
           {
             const Tensor<1, dim> &g_k   = cache.gradient(c, q, k);
@@ -477,6 +463,8 @@ namespace tissuefem::solid
         return;
       }
     const bool edge_length = materials.edge_length_formulation();
+    const auto method      = materials.tangent_method();
+    const bool project     = materials.project_tangent();
     const bool neumann
       = request.external && !boundary_conditions.neumann.empty();
     boundary_conditions.set_time(request.time);
@@ -496,12 +484,46 @@ namespace tissuefem::solid
       const auto &cell     = cache.cells()[c];
       const auto &material = materials.material(cell->material_id());
       if (request.internal)
-        cell_stresses(request, material, c, s, copy);
+        cell_deformation(request, material, c, s, copy);
       if (copy.inverted_det <= 0)
         return;
-      const bool elastic = request.internal && !edge_length;
-      add_point_terms(
-        request, c, materials.density(cell->material_id()), elastic, s, copy);
+      const bool   elastic = request.internal && !edge_length;
+      const double rho     = materials.density(cell->material_id());
+      // The formulation's stress (and tangent) at point q: the mean
+      // dilatation's were computed for the whole cell, the displacement
+      // formulation's come from F at the point.
+      if (materials.mean_dilatation_formulation())
+        add_point_terms(
+          request,
+          c,
+          rho,
+          elastic,
+          [&](const unsigned int q, Tensor<2, dim> &P, Tensor<4, dim> &A) {
+            P = s.P[q];
+            if (request.jacobian)
+              A = s.A[q];
+          },
+          s,
+          copy);
+      else
+        add_point_terms(
+          request,
+          c,
+          rho,
+          elastic,
+          [&](const unsigned int q, Tensor<2, dim> &P, Tensor<4, dim> &A) {
+            const Tensor<1, dim> &a = fibre_field.at(copy.cell_index, q);
+            if (!request.jacobian)
+              P = material.stress(s.F[q], a);
+            else
+              {
+                material.stress_and_tangent(s.F[q], a, P, A, method);
+                if (project)
+                  materials::project_to_positive_definite(A);
+              }
+          },
+          s,
+          copy);
       if (elastic && request.jacobian
           && materials.mean_dilatation_formulation())
         add_mean_dilatation_coupling(s, copy);

@@ -300,26 +300,28 @@ namespace tissuefem::solid
                ScratchType       &s,
                CopyType          &copy) const;
 
-    /// The stresses (and tangents) at the cell's quadrature points, into
-    /// s.P and s.A, for the displacement and mean-dilatation formulations;
-    /// for every formulation, marks the cell inverted (copy.inverted_det)
-    /// where the model cannot represent det F <= 0.
+    /// The deformation of the cell: F at its quadrature points (into s.F),
+    /// or for the mean-dilatation formulation its stresses and tangents
+    /// (s.P, s.A); marks the cell inverted (copy.inverted_det) where the
+    /// model cannot represent det F <= 0.
     template <typename ScratchType, typename CopyType>
     void
-    cell_stresses(const Request                   &request,
-                  const materials::Interface<dim> &material,
-                  const unsigned int               c,
-                  ScratchType                     &s,
-                  CopyType                        &copy) const;
+    cell_deformation(const Request                   &request,
+                     const materials::Interface<dim> &material,
+                     const unsigned int               c,
+                     ScratchType                     &s,
+                     CopyType                        &copy) const;
 
-    /// Adds, point by point, the elastic terms of s.P and s.A (if
-    /// @p elastic), the loads and the inertia (density @p rho).
-    template <typename ScratchType, typename CopyType>
+    /// Adds, point by point, the elastic terms (if @p elastic) of the
+    /// stress P and tangent A that @p stress_at(q, P, A) gives (the
+    /// formulation's), the loads and the inertia (density @p rho).
+    template <typename ScratchType, typename CopyType, typename StressAt>
     void
     add_point_terms(const Request     &request,
                     const unsigned int c,
                     const double       rho,
                     const bool         elastic,
+                    const StressAt    &stress_at,
                     ScratchType       &s,
                     CopyType          &copy) const;
 
