@@ -34,20 +34,12 @@ namespace tissuefem::postprocess
 
   template <int dim>
   void
-  FinalState<dim>::initialize(const Context<dim> &c)
-  {
-    context = &c;
-  }
-
-
-  template <int dim>
-  void
   FinalState<dim>::finish(const time::State &state,
                           const RunTotals &,
                           output::RunRecord &record)
   {
     auto &screen = parallel_tools::screen();
-    auto &solid  = *context->scene.solid;
+    auto &solid  = *this->context->scene.solid;
     if (report_rest_shape)
       {
         const auto &d = solid.get_discretization();
@@ -58,7 +50,7 @@ namespace tissuefem::postprocess
         rest << std::setprecision(4) << "distance from rest shape "
              << solid::distance_from_rest_shape(d, u) << " min J "
              << solid::min_jacobian(d, u);
-        context->summary.line(rest.str());
+        this->context->summary.line(rest.str());
         screen << rest.str()
                << " (largest vertex distance after the best rigid fit, "
                   "length units; smallest det F)"
@@ -67,7 +59,7 @@ namespace tissuefem::postprocess
     const double       stored = solid.stored_energy(state.u);
     std::ostringstream energy;
     energy << "final elastic energy " << std::setprecision(8) << stored;
-    context->summary.line(energy.str());
+    this->context->summary.line(energy.str());
     screen << energy.str() << " (energy units, int Psi dV)" << std::endl;
     record.add("stored energy", stored, "energy units, int Psi dV at the end");
     record.add("kinetic energy",

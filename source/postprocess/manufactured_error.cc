@@ -7,14 +7,6 @@
 namespace tissuefem::postprocess
 {
   template <int dim>
-  void
-  ManufacturedError<dim>::initialize(const Context<dim> &c)
-  {
-    context = &c;
-  }
-
-
-  template <int dim>
   std::vector<std::string>
   ManufacturedError<dim>::save() const
   {
@@ -53,10 +45,10 @@ namespace tissuefem::postprocess
   void
   ManufacturedError<dim>::execute(const Step &step)
   {
-    const auto &manufactured = context->scene.manufactured;
+    const auto &manufactured = this->context->scene.manufactured;
     if (!manufactured)
       return;
-    const auto &d = *context->scene.discretization;
+    const auto &d = *this->context->scene.discretization;
     VectorType  u;
     d.initialize_vector(u, true);
     u            = step.state.u;
@@ -75,7 +67,7 @@ namespace tissuefem::postprocess
                                  const RunTotals &,
                                  output::RunRecord &r)
   {
-    const auto &scene = context->scene;
+    const auto &scene = this->context->scene;
     if (!scene.manufactured)
       return;
     parallel_tools::screen()

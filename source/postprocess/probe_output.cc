@@ -35,7 +35,7 @@ namespace tissuefem::postprocess
   void
   ProbeOutput<dim>::locate()
   {
-    const auto &d = context->scene.solid->get_discretization();
+    const auto &d = this->context->scene.solid->get_discretization();
     probes        = std::make_unique<output::Probes<dim>>(points,
                                                    *d.mapping,
                                                    d.dof_handler,
@@ -47,7 +47,7 @@ namespace tissuefem::postprocess
   void
   ProbeOutput<dim>::initialize(const Context<dim> &c)
   {
-    context = &c;
+    Interface<dim>::initialize(c);
     locate();
     follow_mesh
       = c.scene.solid->signals.changed.connect([this]() { locate(); });
@@ -58,7 +58,7 @@ namespace tissuefem::postprocess
   std::vector<std::string>
   ProbeOutput<dim>::files() const
   {
-    return {context->directory + "/probes.csv"};
+    return {this->context->directory + "/probes.csv"};
   }
 
 
@@ -95,13 +95,13 @@ namespace tissuefem::postprocess
   {
     // Point values need the ghost entries of the probes' cells.
     VectorType u;
-    context->scene.solid->get_discretization().initialize_vector(u, true);
+    this->context->scene.solid->get_discretization().initialize_vector(u, true);
     u                 = step.state.u;
     const auto values = probes->evaluate(u);
     if (!parallel_tools::is_root())
       return;
     const double time      = step.state.time;
-    const bool   summarize = context->summary.due(step.number);
+    const bool   summarize = this->context->summary.due(step.number);
     for (unsigned int p = 0; p < values.size(); ++p)
       {
         std::ostringstream row;
@@ -112,14 +112,8 @@ namespace tissuefem::postprocess
           row << ',' << values[p][c];
         file << row.str() << '\n';
         if (summarize)
-          {
-            std::ostringstream line;
-            line << std::setprecision(8) << "t = " << time << " probe " << p
-                 << " u =";
-            for (unsigned int c = 0; c < dim; ++c)
-              line << ' ' << values[p][c];
-            context->summary.line(line.str());
-          }
+          this->context->summary.line(output::vector_line(
+            time, "probe " + std::to_string(p) + " u", values[p], dim));
       }
     file << std::flush;
   }

@@ -39,7 +39,7 @@ namespace tissuefem::postprocess
   void
   ReactionOutput<dim>::initialize(const Context<dim> &c)
   {
-    context            = &c;
+    Interface<dim>::initialize(c);
     const auto present = c.scene.triangulation.get_boundary_ids();
     for (const auto id : boundary_ids)
       require(std::find(present.begin(), present.end(), id) != present.end(),
@@ -55,7 +55,7 @@ namespace tissuefem::postprocess
   {
     if (boundary_ids.empty())
       return {};
-    return {context->directory + "/reactions.csv"};
+    return {this->context->directory + "/reactions.csv"};
   }
 
 
@@ -90,13 +90,11 @@ namespace tissuefem::postprocess
     if (boundary_ids.empty())
       return;
     const auto &state     = step.state;
-    const auto  reactions = context->scene.solid->reaction_forces(state.u,
-                                                                 state.a,
-                                                                 state.time,
-                                                                 boundary_ids);
+    const auto  reactions = this->context->scene.solid->reaction_forces(
+      state.u, state.a, state.time, boundary_ids);
     if (!parallel_tools::is_root())
       return;
-    const bool summarize = context->summary.due(step.number);
+    const bool summarize = this->context->summary.due(step.number);
     for (unsigned int b = 0; b < boundary_ids.size(); ++b)
       {
         file << state.time << ',' << int(boundary_ids[b]);
@@ -104,14 +102,11 @@ namespace tissuefem::postprocess
           file << ',' << reactions[b * dim + c];
         file << '\n';
         if (summarize)
-          {
-            std::ostringstream line;
-            line << std::setprecision(8) << "t = " << state.time << " boundary "
-                 << int(boundary_ids[b]) << " reaction =";
-            for (unsigned int c = 0; c < dim; ++c)
-              line << ' ' << reactions[b * dim + c];
-            context->summary.line(line.str());
-          }
+          this->context->summary.line(output::vector_line(
+            state.time,
+            "boundary " + std::to_string(int(boundary_ids[b])) + " reaction",
+            &reactions[b * dim],
+            dim));
       }
     file << std::flush;
   }

@@ -9,14 +9,6 @@ namespace tissuefem::postprocess
 {
   template <int dim>
   void
-  RunRecordRows<dim>::initialize(const Context<dim> &c)
-  {
-    context = &c;
-  }
-
-
-  template <int dim>
-  void
   RunRecordRows<dim>::finish(const time::State &state,
                              const RunTotals   &totals,
                              output::RunRecord &r)
@@ -32,7 +24,7 @@ namespace tissuefem::postprocess
                                                static_cast<std::size_t>(
                                                  p * seconds.size()))];
     };
-    const auto &scene = context->scene;
+    const auto &scene = this->context->scene;
     r.add("processes", parallel_tools::n_processes(), "MPI processes");
     r.add("threads", MultithreadInfo::n_threads(), "threads per process");
     r.add("cells",

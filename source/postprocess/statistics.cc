@@ -5,18 +5,10 @@
 namespace tissuefem::postprocess
 {
   template <int dim>
-  void
-  Statistics<dim>::initialize(const Context<dim> &c)
-  {
-    context = &c;
-  }
-
-
-  template <int dim>
   std::vector<std::string>
   Statistics<dim>::files() const
   {
-    return {context->directory + "/statistics.csv"};
+    return {this->context->directory + "/statistics.csv"};
   }
 
 
@@ -59,7 +51,7 @@ namespace tissuefem::postprocess
     if (step.number == 0)
       return;
     // The energies are collective; every process computes them.
-    auto        &solid   = *context->scene.solid;
+    auto        &solid   = *this->context->scene.solid;
     const double stored  = solid.stored_energy(step.state.u);
     const double kinetic = solid.kinetic_energy(step.state.v);
     const auto  &s       = step.report;

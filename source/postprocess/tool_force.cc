@@ -7,18 +7,10 @@ namespace tissuefem::postprocess
 {
   template <int dim>
   void
-  ToolForce<dim>::initialize(const Context<dim> &c)
-  {
-    context = &c;
-  }
-
-
-  template <int dim>
-  void
   ToolForce<dim>::open()
   {
-    if (auto &tool = context->scene.tool)
-      tool->open(context->directory);
+    if (auto &tool = this->context->scene.tool)
+      tool->open(this->context->directory);
   }
 
 
@@ -26,17 +18,13 @@ namespace tissuefem::postprocess
   void
   ToolForce<dim>::execute(const Step &step)
   {
-    auto &tool = context->scene.tool;
+    auto &tool = this->context->scene.tool;
     if (!tool)
       return;
     const Tensor<1, dim> force
-      = tool->record(step.state, *context->scene.solid);
-    std::ostringstream line;
-    line << std::setprecision(8) << "t = " << step.state.time
-         << " tool force =";
-    for (unsigned int d = 0; d < dim; ++d)
-      line << ' ' << force[d];
-    context->summary.line(line.str());
+      = tool->record(step.state, *this->context->scene.solid);
+    this->context->summary.line(
+      output::vector_line(step.state.time, "tool force", force, dim));
   }
 
 
@@ -46,7 +34,7 @@ namespace tissuefem::postprocess
                          const RunTotals &,
                          output::RunRecord &)
   {
-    if (auto &tool = context->scene.tool)
+    if (auto &tool = this->context->scene.tool)
       parallel_tools::screen() << tool->summary() << std::endl;
   }
 

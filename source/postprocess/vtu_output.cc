@@ -37,14 +37,6 @@ namespace tissuefem::postprocess
 
 
   template <int dim>
-  void
-  VtuOutput<dim>::initialize(const Context<dim> &c)
-  {
-    context = &c;
-  }
-
-
-  template <int dim>
   std::vector<std::string>
   VtuOutput<dim>::save() const
   {
@@ -78,7 +70,7 @@ namespace tissuefem::postprocess
     if (interval == 0 || step.number % interval != 0)
       return;
     // DataOut reads ghost entries of the cells it writes.
-    const auto &d = context->scene.solid->get_discretization();
+    const auto &d = this->context->scene.solid->get_discretization();
     VectorType  u, v;
     d.initialize_vector(u, true);
     d.initialize_vector(v, true);
@@ -95,7 +87,7 @@ namespace tissuefem::postprocess
                         const VectorType  &u,
                         const VectorType  &v)
   {
-    const auto &solid = *context->scene.solid;
+    const auto &solid = *this->context->scene.solid;
     const auto &d     = solid.get_discretization();
     const std::vector<DataComponentInterpretation::DataComponentInterpretation>
       vector_field(dim,
@@ -147,7 +139,7 @@ namespace tissuefem::postprocess
     const unsigned int rank
       = Utilities::MPI::this_mpi_process(parallel_tools::communicator());
     const std::string  piece = base.str() + "." + std::to_string(rank) + ".vtu";
-    const std::string &directory = context->directory;
+    const std::string &directory = this->context->directory;
     output::write_whole(directory + "/" + piece,
                         [&](std::ostream &out) { data_out.write_vtu(out); });
     if (!parallel_tools::is_root())

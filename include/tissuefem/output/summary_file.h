@@ -1,10 +1,28 @@
 #pragma once
 
 #include <fstream>
+#include <iomanip>
+#include <sstream>
 #include <string>
 
 namespace tissuefem::output
 {
+  /// "t = TIME LABEL = v_0 v_1 ..." with 8 significant digits: the summary
+  /// line of a vector quantity (@p n components of @p values).
+  template <typename Values>
+  std::string
+  vector_line(const double       time,
+              const std::string &label,
+              const Values      &values,
+              const unsigned int n)
+  {
+    std::ostringstream line;
+    line << std::setprecision(8) << "t = " << time << ' ' << label << " =";
+    for (unsigned int c = 0; c < n; ++c)
+      line << ' ' << values[c];
+    return line.str();
+  }
+
   /**
    * The optional 'Output/Summary file': lines of results without timings or
    * iteration counts, for regression tests. The run writes its header and

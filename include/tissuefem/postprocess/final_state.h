@@ -21,8 +21,6 @@ namespace tissuefem::postprocess
 
     explicit FinalState(ParameterHandler &prm);
 
-    void
-    initialize(const Context<dim> &context) override;
 
     void
     execute(const Step &) override
@@ -35,7 +33,6 @@ namespace tissuefem::postprocess
            output::RunRecord &record) override;
 
   private:
-    bool                report_rest_shape = false;
-    const Context<dim> *context           = nullptr;
+    bool report_rest_shape = false;
   };
 } // namespace tissuefem::postprocess

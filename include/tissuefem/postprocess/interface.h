@@ -74,11 +74,14 @@ namespace tissuefem::postprocess
   public:
     virtual ~Interface() = default;
 
-    /// Checks the parameters against the scene and keeps @p context (which
-    /// outlives the postprocessor). No file is written yet.
+    /// Keeps @p c (which outlives the postprocessor) as 'context'. A
+    /// postprocessor that checks its parameters against the scene
+    /// overrides this and calls it first. No file is written yet.
     virtual void
-    initialize(const Context<dim> &context)
-      = 0;
+    initialize(const Context<dim> &c)
+    {
+      context = &c;
+    }
 
     /// Creates its files (a run from t = 0).
     virtual void
@@ -121,6 +124,10 @@ namespace tissuefem::postprocess
            output::RunRecord & /*record*/)
     {
     }
+
+  protected:
+    /// What initialize() was given.
+    const Context<dim> *context = nullptr;
   };
 
   template <int dim>

@@ -26,8 +26,6 @@ namespace tissuefem::postprocess
     {
     }
 
-    void
-    initialize(const Context<dim> &context) override;
 
     std::vector<std::string>
     save() const override;
@@ -44,8 +42,7 @@ namespace tissuefem::postprocess
            output::RunRecord &record) override;
 
   private:
-    const Context<dim> *context = nullptr;
-    double              max_l2 = 0, l2_time_integral = 0, last_time = 0;
+    double max_l2 = 0, l2_time_integral = 0, last_time = 0;
     typename boundary::ManufacturedSolution<dim>::Errors last{0, 0, 0, 0};
   };
 } // namespace tissuefem::postprocess

@@ -27,7 +27,7 @@ namespace tissuefem::postprocess
     explicit ProbeOutput(ParameterHandler &prm);
 
     void
-    initialize(const Context<dim> &context) override;
+    initialize(const Context<dim> &c) override;
 
     void
     open() override;
@@ -47,7 +47,6 @@ namespace tissuefem::postprocess
     locate();
 
     std::vector<Point<dim>>              points;
-    const Context<dim>                  *context = nullptr;
     std::unique_ptr<output::Probes<dim>> probes;
     boost::signals2::scoped_connection   follow_mesh;
     std::ofstream                        file;

@@ -23,7 +23,7 @@ namespace tissuefem::postprocess
 
     /// Checks that every boundary id is on the mesh.
     void
-    initialize(const Context<dim> &context) override;
+    initialize(const Context<dim> &c) override;
 
     void
     open() override;
@@ -39,7 +39,6 @@ namespace tissuefem::postprocess
 
   private:
     std::vector<types::boundary_id> boundary_ids;
-    const Context<dim>             *context = nullptr;
     std::ofstream                   file;
   };
 } // namespace tissuefem::postprocess

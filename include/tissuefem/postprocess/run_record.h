@@ -24,8 +24,6 @@ namespace tissuefem::postprocess
     {
     }
 
-    void
-    initialize(const Context<dim> &context) override;
 
     void
     execute(const Step &) override
@@ -38,6 +36,5 @@ namespace tissuefem::postprocess
            output::RunRecord &record) override;
 
   private:
-    const Context<dim> *context = nullptr;
   };
 } // namespace tissuefem::postprocess

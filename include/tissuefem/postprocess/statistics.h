@@ -28,8 +28,6 @@ namespace tissuefem::postprocess
     {
     }
 
-    void
-    initialize(const Context<dim> &context) override;
 
     void
     open() override;
@@ -47,8 +45,7 @@ namespace tissuefem::postprocess
     execute(const Step &step) override;
 
   private:
-    const Context<dim> *context = nullptr;
-    std::ofstream       file;
+    std::ofstream file;
     /// Energy dissipated by the integrator's damping since t = 0.
     double damping_work = 0;
   };

@@ -24,8 +24,6 @@ namespace tissuefem::postprocess
     {
     }
 
-    void
-    initialize(const Context<dim> &context) override;
 
     /// Lets the tool create its files (and open its live link).
     void
@@ -40,6 +38,5 @@ namespace tissuefem::postprocess
            output::RunRecord &record) override;
 
   private:
-    const Context<dim> *context = nullptr;
   };
 } // namespace tissuefem::postprocess

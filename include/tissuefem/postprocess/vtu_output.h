@@ -24,8 +24,6 @@ namespace tissuefem::postprocess
 
     explicit VtuOutput(ParameterHandler &prm);
 
-    void
-    initialize(const Context<dim> &context) override;
 
     std::vector<std::string>
     save() const override;
@@ -44,8 +42,7 @@ namespace tissuefem::postprocess
           const VectorType  &u,
           const VectorType  &v);
 
-    unsigned int        interval = 1;
-    const Context<dim> *context  = nullptr;
+    unsigned int interval = 1;
     /// (time, .pvtu file) of every step written so far: the .pvd series.
     std::vector<std::pair<double, std::string>> records;
   };
