@@ -246,13 +246,13 @@ namespace tissuefem::solid
   template <int dim>
   template <typename ScratchType, typename CopyType, typename StressAt>
   void
-  Solid<dim>::add_point_terms(const Request     &request,
-                              const unsigned int c,
-                              const double       rho,
-                              const bool         elastic,
-                              const StressAt    &stress_at,
-                              ScratchType       &s,
-                              CopyType          &copy) const
+  Solid<dim>::add_point_terms_with(const Request     &request,
+                                   const unsigned int c,
+                                   const double       rho,
+                                   const bool         elastic,
+                                   const StressAt    &stress_at,
+                                   ScratchType       &s,
+                                   CopyType          &copy) const
   {
     const unsigned int n_scalar      = cache.n_scalar;
     const double      *JxW           = cache.JxW(c);
@@ -324,6 +324,57 @@ namespace tissuefem::solid
               }
           }
       }
+  }
+
+
+  template <int dim>
+  template <typename ScratchType, typename CopyType>
+  void
+  Solid<dim>::add_point_terms(const Request                   &request,
+                              const materials::Interface<dim> &material,
+                              const unsigned int               c,
+                              const double                     rho,
+                              const bool                       elastic,
+                              ScratchType                     &s,
+                              CopyType                        &copy) const
+  {
+    const auto method  = materials.tangent_method();
+    const bool project = materials.project_tangent();
+    // The formulation's stress (and tangent) at point q: the mean
+    // dilatation's were computed for the whole cell, the displacement
+    // formulation's come from F at the point.
+    if (materials.mean_dilatation_formulation())
+      add_point_terms_with(
+        request,
+        c,
+        rho,
+        elastic,
+        [&](const unsigned int q, Tensor<2, dim> &P, Tensor<4, dim> &A) {
+          P = s.P[q];
+          if (request.jacobian)
+            A = s.A[q];
+        },
+        s,
+        copy);
+    else
+      add_point_terms_with(
+        request,
+        c,
+        rho,
+        elastic,
+        [&](const unsigned int q, Tensor<2, dim> &P, Tensor<4, dim> &A) {
+          const Tensor<1, dim> &a = fibre_field.at(copy.cell_index, q);
+          if (!request.jacobian)
+            P = material.stress(s.F[q], a);
+          else
+            {
+              material.stress_and_tangent(s.F[q], a, P, A, method);
+              if (project)
+                materials::project_to_positive_definite(A);
+            }
+        },
+        s,
+        copy);
   }
 
 
@@ -463,8 +514,6 @@ namespace tissuefem::solid
         return;
       }
     const bool edge_length = materials.edge_length_formulation();
-    const auto method      = materials.tangent_method();
-    const bool project     = materials.project_tangent();
     const bool neumann
       = request.external && !boundary_conditions.neumann.empty();
     boundary_conditions.set_time(request.time);
@@ -489,41 +538,7 @@ namespace tissuefem::solid
         return;
       const bool   elastic = request.internal && !edge_length;
       const double rho     = materials.density(cell->material_id());
-      // The formulation's stress (and tangent) at point q: the mean
-      // dilatation's were computed for the whole cell, the displacement
-      // formulation's come from F at the point.
-      if (materials.mean_dilatation_formulation())
-        add_point_terms(
-          request,
-          c,
-          rho,
-          elastic,
-          [&](const unsigned int q, Tensor<2, dim> &P, Tensor<4, dim> &A) {
-            P = s.P[q];
-            if (request.jacobian)
-              A = s.A[q];
-          },
-          s,
-          copy);
-      else
-        add_point_terms(
-          request,
-          c,
-          rho,
-          elastic,
-          [&](const unsigned int q, Tensor<2, dim> &P, Tensor<4, dim> &A) {
-            const Tensor<1, dim> &a = fibre_field.at(copy.cell_index, q);
-            if (!request.jacobian)
-              P = material.stress(s.F[q], a);
-            else
-              {
-                material.stress_and_tangent(s.F[q], a, P, A, method);
-                if (project)
-                  materials::project_to_positive_definite(A);
-              }
-          },
-          s,
-          copy);
+      add_point_terms(request, material, c, rho, elastic, s, copy);
       if (elastic && request.jacobian
           && materials.mean_dilatation_formulation())
         add_mean_dilatation_coupling(s, copy);

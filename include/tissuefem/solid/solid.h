@@ -317,13 +317,26 @@ namespace tissuefem::solid
     /// formulation's), the loads and the inertia (density @p rho).
     template <typename ScratchType, typename CopyType, typename StressAt>
     void
-    add_point_terms(const Request     &request,
-                    const unsigned int c,
-                    const double       rho,
-                    const bool         elastic,
-                    const StressAt    &stress_at,
-                    ScratchType       &s,
-                    CopyType          &copy) const;
+    add_point_terms_with(const Request     &request,
+                         const unsigned int c,
+                         const double       rho,
+                         const bool         elastic,
+                         const StressAt    &stress_at,
+                         ScratchType       &s,
+                         CopyType          &copy) const;
+
+    /// add_point_terms_with() with the stress of the cell's formulation:
+    /// the mean dilatation's, computed for the whole cell, or the
+    /// displacement formulation's, from F at the point.
+    template <typename ScratchType, typename CopyType>
+    void
+    add_point_terms(const Request                   &request,
+                    const materials::Interface<dim> &material,
+                    const unsigned int               c,
+                    const double                     rho,
+                    const bool                       elastic,
+                    ScratchType                     &s,
+                    CopyType                        &copy) const;
 
     /// The mean-dilatation Jacobian's coupling of all points through theta.
     template <typename ScratchType, typename CopyType>
