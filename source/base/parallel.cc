@@ -27,4 +27,15 @@ namespace tissuefem::parallel_tools
     static std::ostream discard(&buffer);
     return is_root() ? std::cout : discard;
   }
+
+
+  std::string
+  first_error(const std::string &local_error)
+  {
+    for (const std::string &e :
+         Utilities::MPI::all_gather(communicator(), local_error))
+      if (!e.empty())
+        return e;
+    return {};
+  }
 } // namespace tissuefem::parallel_tools

@@ -48,11 +48,9 @@ namespace tissuefem::postprocess
     const auto &manufactured = this->context->scene.manufactured;
     if (!manufactured)
       return;
-    const auto &d = *this->context->scene.discretization;
-    VectorType  u;
-    d.initialize_vector(u, true);
-    u            = step.state.u;
-    const auto e = manufactured->errors(d, u, step.state.time);
+    const auto e = manufactured->errors(*this->context->scene.discretization,
+                                        step.u_ghosted,
+                                        step.state.time);
     max_l2       = std::max(max_l2, e.l2);
     // Rectangle rule on the step just taken: sum over steps of dt e^2.
     l2_time_integral += (step.state.time - last_time) * e.l2 * e.l2;

@@ -93,11 +93,7 @@ namespace tissuefem::postprocess
   void
   ProbeOutput<dim>::execute(const Step &step)
   {
-    // Point values need the ghost entries of the probes' cells.
-    VectorType u;
-    this->context->scene.solid->get_discretization().initialize_vector(u, true);
-    u                 = step.state.u;
-    const auto values = probes->evaluate(u);
+    const auto values = probes->evaluate(step.u_ghosted);
     if (!parallel_tools::is_root())
       return;
     const double time      = step.state.time;

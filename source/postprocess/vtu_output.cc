@@ -70,13 +70,10 @@ namespace tissuefem::postprocess
     if (interval == 0 || step.number % interval != 0)
       return;
     // DataOut reads ghost entries of the cells it writes.
-    const auto &d = this->context->scene.solid->get_discretization();
-    VectorType  u, v;
-    d.initialize_vector(u, true);
-    d.initialize_vector(v, true);
-    u = step.state.u;
+    VectorType v;
+    this->context->scene.solid->get_discretization().initialize_vector(v, true);
     v = step.state.v;
-    write(step.number, step.state.time, u, v);
+    write(step.number, step.state.time, step.u_ghosted, v);
   }
 
 

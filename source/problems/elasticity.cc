@@ -138,12 +138,26 @@ namespace tissuefem::problems
 
   template <int dim>
   std::vector<VectorType *>
-  Elasticity<dim>::checkpoint_vectors(time::State &state)
+  Elasticity<dim>::state_vectors(time::State &state)
   {
     std::vector<VectorType *> vectors = {&state.u, &state.v, &state.a};
     for (VectorType *v : integrator->history())
       vectors.push_back(v);
     return vectors;
+  }
+
+
+  template <int dim>
+  std::vector<std::string>
+  Elasticity<dim>::appended_files() const
+  {
+    std::vector<std::string> files;
+    if (!summary->path().empty())
+      files.push_back(summary->path());
+    for (const auto &[name, postprocessor] : postprocessors)
+      for (const std::string &f : postprocessor->files())
+        files.push_back(f);
+    return files;
   }
 
 
@@ -158,24 +172,17 @@ namespace tissuefem::problems
     checkpoint.n_dofs             = scene->solid->n_dofs();
     checkpoint.integrator         = time_parameters.integrator;
     checkpoint.integrator_scalars = integrator->checkpoint_scalars();
-    std::vector<std::string> files;
-    if (!summary->path().empty())
-      files.push_back(summary->path());
     for (const auto &[name, postprocessor] : postprocessors)
-      {
-        checkpoint.postprocessor_state[name] = postprocessor->save();
-        for (const std::string &f : postprocessor->files())
-          files.push_back(f);
-      }
+      checkpoint.postprocessor_state[name] = postprocessor->save();
     // (Root's sizes reach the other processes through its file.)
     if (parallel_tools::is_root())
-      for (const std::string &file : files)
+      for (const std::string &file : appended_files())
         {
           std::error_code code;
           const auto      size        = std::filesystem::file_size(file, code);
           checkpoint.file_sizes[file] = code ? 0 : size;
         }
-    const auto vectors = checkpoint_vectors(state);
+    const auto vectors = state_vectors(state);
     output::write_checkpoint(output_parameters.directory + "/checkpoint",
                              checkpoint,
                              {vectors.begin(), vectors.end()});
@@ -280,17 +287,29 @@ namespace tissuefem::problems
             {
               error = e.what();
             }
-        error
-          = Utilities::MPI::broadcast(parallel_tools::communicator(), error);
-        if (!error.empty())
-          throw InputError(error);
+        if (const std::string e = parallel_tools::first_error(error);
+            !e.empty())
+          throw InputError(e);
+        // Every postprocessor opens on every process (some open links
+        // together), even after another failed; then all fail alike.
         for (auto &[name, postprocessor] : postprocessors)
-          postprocessor->open();
+          try
+            {
+              postprocessor->open();
+            }
+          catch (const InputError &e)
+            {
+              if (error.empty())
+                error = e.what();
+            }
+        if (const std::string e = parallel_tools::first_error(error);
+            !e.empty())
+          throw InputError(e);
         return 0;
       }
     const auto checkpoint
       = output::read_checkpoint(run_context.restart_directory,
-                                checkpoint_vectors(state));
+                                state_vectors(state));
     require(checkpoint.integrator == time_parameters.integrator
               && checkpoint.n_dofs == scene->solid->n_dofs(),
             "--restart",
@@ -299,13 +318,7 @@ namespace tissuefem::problems
               + std::to_string(checkpoint.n_dofs)
               + " unknowns; this scene has '" + time_parameters.integrator
               + "' and " + std::to_string(scene->solid->n_dofs()));
-    std::vector<std::string> files;
-    if (!summary->path().empty())
-      files.push_back(summary->path());
-    for (const auto &[name, postprocessor] : postprocessors)
-      for (const std::string &f : postprocessor->files())
-        files.push_back(f);
-    cut_back_files(checkpoint, files);
+    cut_back_files(checkpoint, appended_files());
     summary->resume();
     for (auto &[name, postprocessor] : postprocessors)
       {
@@ -334,7 +347,12 @@ namespace tissuefem::problems
       throw SolverError("non-finite displacement or velocity at t = "
                         + std::to_string(state.time)
                         + "; nothing was written for this step");
-    const postprocess::Step current{step, report, state};
+    // One copy with ghost entries serves every postprocessor that
+    // evaluates the displacement field.
+    VectorType u_ghosted;
+    scene->discretization->initialize_vector(u_ghosted, true);
+    u_ghosted = state.u;
+    const postprocess::Step current{step, report, state, u_ghosted};
     for (auto &[name, postprocessor] : postprocessors)
       postprocessor->execute(current);
   }
@@ -346,12 +364,9 @@ namespace tissuefem::problems
   {
     if (!adaptation->due(step))
       return;
-    std::vector<VectorType *> vectors = {&state.u, &state.v, &state.a};
-    for (VectorType *v : integrator->history())
-      vectors.push_back(v);
     // The solid announces the change to the solver, the integrator, the
     // state's boundary values and the postprocessors.
-    if (adaptation->adapt(state.u, state.time, vectors))
+    if (adaptation->adapt(state.u, state.time, state_vectors(state)))
       parallel_tools::screen()
         << "  mesh adapted: " << scene->triangulation.n_active_cells()
         << " cells, " << scene->solid->n_dofs() << " unknowns" << std::endl;

@@ -5,6 +5,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <iostream>
+#include <string>
 
 namespace tissuefem
 {
@@ -43,5 +44,13 @@ namespace tissuefem
      */
     std::ostream &
     screen();
+
+    /**
+     * The first non-empty @p local_error of any process (by rank), on every
+     * process; empty if there is none. Collective: lets every process fail
+     * alike when only some met an error.
+     */
+    std::string
+    first_error(const std::string &local_error);
   } // namespace parallel_tools
 } // namespace tissuefem

@@ -36,6 +36,9 @@ namespace tissuefem::postprocess
     /// What the integrator reported (empty for step 0).
     const time::StepReport &report;
     const time::State      &state;
+    /// state.u with the ghost entries of this process's cells (point
+    /// values, fields, errors need them).
+    const VectorType &u_ghosted;
   };
 
   /// What the whole run cost, for the end-of-run reports.

@@ -115,10 +115,15 @@ namespace tissuefem::problems
     std::string
     checkpoint_obstacle() const;
 
-    /// The vectors a checkpoint holds: the state and the integrator's
-    /// history.
+    /// The state and the integrator's history: what a checkpoint holds
+    /// and a mesh adaptation transfers.
     std::vector<VectorType *>
-    checkpoint_vectors(time::State &state);
+    state_vectors(time::State &state);
+
+    /// The files the run appends to step by step (summary file and
+    /// postprocessors'), whose sizes a checkpoint records.
+    std::vector<std::string>
+    appended_files() const;
 
     /// Writes '<Output/Directory>/checkpoint' for the state after @p step.
     void
