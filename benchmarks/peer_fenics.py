@@ -115,8 +115,12 @@ subsection Linear solver
 end
 subsection Output
   set Directory = {out}
-  set VTU interval = 0
-  set Probe points = 0.5, 0.5, 0.5
+  subsection VTU
+    set Interval = 0
+  end
+  subsection Probes
+    set Points = 0.5, 0.5, 0.5
+  end
 end
 """
 

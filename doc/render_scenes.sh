@@ -14,7 +14,7 @@
 #   jeffrey_muscle   End time 0.5 -> 0.2 s, the only scene shortened: the
 #                    whole run takes about a minute on two cores, and the
 #                    picture is the end of the pull (t = 0.2 s) anyway
-#   VTU interval     set where the scene writes no fields (the studies,
+#   VTU/Interval     set where the scene writes no fields (the studies,
 #                    quasistatic_1d, manufactured) or writes too few
 #                    (invertible_block re-inflates before its step 5)
 set -u
@@ -67,21 +67,21 @@ scene jeffrey_muscle '--up x' --set 'Time integration/End time=0.2'
 scene anisotropic_muscle ''
 # The liver hangs along y (gravity -y): seen from the front.
 scene liver_gravity '--view xy'
-scene invertible_block '--step 1' --set 'Output/VTU interval=1'
+scene invertible_block '--step 1' --set 'Output/VTU/Interval=1'
 scene box_3d_drag ''
 # t = 0.1 s, the end of the drag; displacement, as the stress is all in the
 # grasped corner and would leave the rest of the block one colour
 scene jeffrey_block '--step 500 --field displacement'
 scene inversion_recovery '--step 5'  # t = 0.012, still partly inverted
 scene liver_incompressible '--view xy'
-scene jeffrey_table_e1 '--step 1' --set 'Output/VTU interval=1'
-scene jeffrey_timing '' --set 'Output/VTU interval=1'
-scene stability_map '' --set 'Output/VTU interval=10'
-scene manufactured '' --set 'Output/VTU interval=10'
+scene jeffrey_table_e1 '--step 1' --set 'Output/VTU/Interval=1'
+scene jeffrey_timing '' --set 'Output/VTU/Interval=1'
+scene stability_map '' --set 'Output/VTU/Interval=10'
+scene manufactured '' --set 'Output/VTU/Interval=10'
 # 1D, u = sin t everywhere (a rigid motion, stress at round-off): the bar
 # moved by u = 1 at t = pi/2
 scene quasistatic_1d '--step 31 --field displacement' \
-  --set 'Output/VTU interval=1'
+  --set 'Output/VTU/Interval=1'
 
 if [ -n "$failed" ]; then
   echo "render_scenes: failed:$failed" >&2

@@ -25,7 +25,7 @@ end=${END_TIME:+"--set 'Time integration/End time=$END_TIME'"}
 out=output-active-region-study
 run() {
   mkdir -p "$out"
-  if ! eval "\"$exe\" \"$prm\" --set 'Output/Directory=$out/$1' --set 'Output/VTU interval=0' \
+  if ! eval "\"$exe\" \"$prm\" --set 'Output/Directory=$out/$1' --set 'Output/VTU/Interval=0' \
     --set 'Time integration/Damped central difference/Active region threshold=$1' $end" \
     > "$out/log-$1" 2>&1; then
     touch "$out/failed"

@@ -28,7 +28,7 @@ tip() {
   E=$(awk -v nu="$nu" 'BEGIN { printf "%.12g", 2 * 80.194 * (1 + nu) }')
   local args=(--set "Geometry/Subdivisions=$n, $n" --set "Materials/Poisson's ratio=$nu"
               --set "Materials/Young's modulus=$E" --set "Output/Directory=$work/$name-$n-$nu"
-              --set "Output/VTU interval=0")
+              --set "Output/VTU/Interval=0")
   case $name in
     Q1) args+=(--set "Materials/Formulation=displacement") ;;
     Q1-F-bar) ;;

@@ -15,7 +15,7 @@ for case in "linear elastic|displacement" \
             "robust neo-Hookean|displacement"; do
   model=${case%|*}; form=${case#*|}
   d=$("$exe" "$prm" --set "Materials/Model=$model" --set "Materials/Formulation=$form" \
-        --set "Output/Directory=output-jeffrey-block-study" --set "Output/VTU interval=0" |
+        --set "Output/Directory=output-jeffrey-block-study" --set "Output/VTU/Interval=0" |
       sed -n 's/^distance from rest shape \([^ ]*\) .*/\1/p')
   printf '%-45s %-13s %s\n' "$model" "$form" "$d"
 done

@@ -4,6 +4,7 @@
 #include <tissuefem/base/application.h>
 #include <tissuefem/base/input_error.h>
 #include <tissuefem/base/interruption.h>
+#include <tissuefem/base/moved_entries.h>
 #include <tissuefem/base/parallel.h>
 #include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/boundary/boundary_conditions.h>
@@ -89,23 +90,20 @@ namespace tissuefem
                          + "': " + one_line_message(e));
       }
 
+    // Values given at the old place of a moved entry go to the new one
+    // before the overrides, so that an override wins at either place.
+    moved_entries::apply(prm);
     for (const std::string &assignment : overrides)
       {
         const auto equals = assignment.find('=');
         if (equals == std::string::npos)
           throw InputError("--set '" + assignment
                            + "': expected 'Subsection/Name=value'");
-        const std::vector<std::string> path
-          = split_and_trim(assignment.substr(0, equals), '/');
         const std::string value
           = Utilities::trim(assignment.substr(equals + 1));
         try
           {
-            for (unsigned int i = 0; i + 1 < path.size(); ++i)
-              prm.enter_subsection(path[i]);
-            prm.set(path.back(), value);
-            for (unsigned int i = 0; i + 1 < path.size(); ++i)
-              prm.leave_subsection();
+            moved_entries::set(prm, assignment.substr(0, equals), value);
           }
         catch (const ExceptionBase &e)
           {

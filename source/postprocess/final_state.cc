@@ -4,22 +4,24 @@
 #include <iomanip>
 #include <sstream>
 
+#include <tissuefem/base/moved_entries.h>
+
 namespace tissuefem::postprocess
 {
   template <int dim>
   void
   FinalState<dim>::declare_parameters(ParameterHandler &prm)
   {
-    prm.enter_subsection("Output");
-    prm.declare_entry("Report rest shape",
-                      "false",
-                      Patterns::Bool(),
-                      "At the end of the run, report (on screen and in the "
-                      "summary file) the distance from the rest shape up to "
-                      "a rigid motion (largest vertex distance after the best "
-                      "rigid fit, length units) and the smallest J = det F: "
-                      "the figures of an inversion-recovery test.");
-    prm.leave_subsection();
+    moved_entries::declare(
+      prm,
+      "Output/Report rest shape",
+      "Output/Final state/Report rest shape",
+      "false",
+      Patterns::Bool(),
+      "At the end of the run, report (on screen and in the summary file) the "
+      "distance from the rest shape up to a rigid motion (largest vertex "
+      "distance after the best rigid fit, length units) and the smallest J = "
+      "det F: the figures of an inversion-recovery test.");
   }
 
 
@@ -27,7 +29,9 @@ namespace tissuefem::postprocess
   FinalState<dim>::FinalState(ParameterHandler &prm)
   {
     prm.enter_subsection("Output");
+    prm.enter_subsection("Final state");
     report_rest_shape = prm.get_bool("Report rest shape");
+    prm.leave_subsection();
     prm.leave_subsection();
   }
 

@@ -4,20 +4,22 @@
 
 #include <sstream>
 
+#include <tissuefem/base/moved_entries.h>
+
 namespace tissuefem::postprocess
 {
   template <int dim>
   void
   ProbeOutput<dim>::declare_parameters(ParameterHandler &prm)
   {
-    prm.enter_subsection("Output");
-    prm.declare_entry("Probe points",
-                      "",
-                      Patterns::Anything(),
-                      "Reference points 'x, y, z' separated by ';' at which "
-                      "the displacement goes to probes.csv every step "
-                      "(Dimension coordinates per point).");
-    prm.leave_subsection();
+    moved_entries::declare(
+      prm,
+      "Output/Probe points",
+      "Output/Probes/Points",
+      "",
+      Patterns::Anything(),
+      "Reference points 'x, y, z' separated by ';' at which the displacement "
+      "goes to probes.csv every step (Dimension coordinates per point).");
   }
 
 
@@ -25,9 +27,11 @@ namespace tissuefem::postprocess
   ProbeOutput<dim>::ProbeOutput(ParameterHandler &prm)
   {
     prm.enter_subsection("Output");
-    const std::string text = prm.get("Probe points");
+    prm.enter_subsection("Probes");
+    const std::string text = prm.get("Points");
     prm.leave_subsection();
-    points = parse_points<dim>(text, "Output/Probe points");
+    prm.leave_subsection();
+    points = parse_points<dim>(text, "Output/Probes/Points");
   }
 
 
@@ -39,7 +43,7 @@ namespace tissuefem::postprocess
     probes        = std::make_unique<output::Probes<dim>>(points,
                                                    *d.mapping,
                                                    d.dof_handler,
-                                                   "Output/Probe points");
+                                                   "Output/Probes/Points");
   }
 
 
@@ -121,5 +125,5 @@ namespace tissuefem::postprocess
   TISSUEFEM_REGISTER_POSTPROCESSOR(
     ProbeOutput,
     "probes",
-    "probes.csv: the displacement at 'Probe points' every step.")
+    "probes.csv: the displacement at 'Output/Probes/Points' every step.")
 } // namespace tissuefem::postprocess

@@ -4,23 +4,24 @@
 #include <algorithm>
 #include <sstream>
 
+#include <tissuefem/base/moved_entries.h>
+
 namespace tissuefem::postprocess
 {
   template <int dim>
   void
   ReactionOutput<dim>::declare_parameters(ParameterHandler &prm)
   {
-    prm.enter_subsection("Output");
-    prm.declare_entry("Reaction boundary ids",
-                      "",
-                      Patterns::List(Patterns::Integer(0, 254)),
-                      "Boundary ids whose reaction force goes to "
-                      "reactions.csv every step: the force the prescribed "
-                      "boundary applies to the body (force units), i.e. the "
-                      "sum of the unconstrained nodal residual over the "
-                      "boundary's nodes. A tool holding the boundary feels "
-                      "the opposite force.");
-    prm.leave_subsection();
+    moved_entries::declare(
+      prm,
+      "Output/Reaction boundary ids",
+      "Output/Reactions/Boundary ids",
+      "",
+      Patterns::List(Patterns::Integer(0, 254)),
+      "Boundary ids whose reaction force goes to reactions.csv every step: "
+      "the force the prescribed boundary applies to the body (force units), "
+      "i.e. the sum of the unconstrained nodal residual over the boundary's "
+      "nodes. A tool holding the boundary feels the opposite force.");
   }
 
 
@@ -28,9 +29,10 @@ namespace tissuefem::postprocess
   ReactionOutput<dim>::ReactionOutput(ParameterHandler &prm)
   {
     prm.enter_subsection("Output");
-    for (const auto &id :
-         Utilities::split_string_list(prm.get("Reaction boundary ids")))
+    prm.enter_subsection("Reactions");
+    for (const auto &id : Utilities::split_string_list(prm.get("Boundary ids")))
       boundary_ids.push_back(Utilities::string_to_int(id));
+    prm.leave_subsection();
     prm.leave_subsection();
   }
 
@@ -43,7 +45,7 @@ namespace tissuefem::postprocess
     const auto present = c.scene.triangulation.get_boundary_ids();
     for (const auto id : boundary_ids)
       require(std::find(present.begin(), present.end(), id) != present.end(),
-              "Output/Reaction boundary ids",
+              "Output/Reactions/Boundary ids",
               "boundary id " + std::to_string(id)
                 + " is on no boundary face of the mesh");
   }
@@ -115,8 +117,8 @@ namespace tissuefem::postprocess
   template class ReactionOutput<2>;
   template class ReactionOutput<3>;
 
-  TISSUEFEM_REGISTER_POSTPROCESSOR(
-    ReactionOutput,
-    "reactions",
-    "reactions.csv: the force through each 'Reaction boundary ids' boundary.")
+  TISSUEFEM_REGISTER_POSTPROCESSOR(ReactionOutput,
+                                   "reactions",
+                                   "reactions.csv: the force through each "
+                                   "'Output/Reactions/Boundary ids' boundary.")
 } // namespace tissuefem::postprocess

@@ -11,19 +11,21 @@
 #include <iomanip>
 #include <sstream>
 
+#include <tissuefem/base/moved_entries.h>
+
 namespace tissuefem::postprocess
 {
   template <int dim>
   void
   VtuOutput<dim>::declare_parameters(ParameterHandler &prm)
   {
-    prm.enter_subsection("Output");
-    prm.declare_entry("VTU interval",
-                      "1",
-                      Patterns::Integer(0),
-                      "Write the fields every this many steps (and at t = 0); "
-                      "0 writes no VTU files.");
-    prm.leave_subsection();
+    moved_entries::declare(prm,
+                           "Output/VTU interval",
+                           "Output/VTU/Interval",
+                           "1",
+                           Patterns::Integer(0),
+                           "Write the fields every this many steps (and at "
+                           "t = 0); 0 writes no VTU files.");
   }
 
 
@@ -31,7 +33,9 @@ namespace tissuefem::postprocess
   VtuOutput<dim>::VtuOutput(ParameterHandler &prm)
   {
     prm.enter_subsection("Output");
-    interval = prm.get_integer("VTU interval");
+    prm.enter_subsection("VTU");
+    interval = prm.get_integer("Interval");
+    prm.leave_subsection();
     prm.leave_subsection();
   }
 
@@ -162,5 +166,5 @@ namespace tissuefem::postprocess
     VtuOutput,
     "VTU",
     "solution-NNNNN.pvtu/.vtu and solution.pvd: the fields for ParaView "
-    "every 'VTU interval' steps.")
+    "every 'Output/VTU/Interval' steps.")
 } // namespace tissuefem::postprocess

@@ -30,7 +30,7 @@ namespace tissuefem::problems
                       "",
                       Patterns::Anything(),
                       "'Subsection/Name = value; ...' applied to every run "
-                      "of the study (e.g. 'Output/VTU interval = 0').");
+                      "of the study (e.g. 'Output/VTU/Interval = 0').");
     prm.declare_entry(
       "Axes",
       "",

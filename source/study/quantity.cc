@@ -30,7 +30,7 @@ namespace tissuefem::study
       "||Grad(u_h - u)||_L2 at the end time, their relative forms, 'max L2 "
       "error' (largest over the steps) and 'L2L2 error' (in space and time). "
       "Otherwise: 'probe final' |u_h(p, T) - u_ref(p, T)| (length units) at "
-      "the probe 'Probe' of the scene's 'Output/Probe points'; 'probe "
+      "the probe 'Probe' of the scene's 'Output/Probes/Points'; 'probe "
       "history' the largest such difference over the reference's output "
       "times (the variant's probe interpolated linearly in time); 'stored "
       "energy' |E - E_ref| at the end (energy units).");
@@ -156,7 +156,7 @@ namespace tissuefem::study
     if (!in)
       throw InputError("'" + file
                        + "' cannot be read (the scene needs "
-                         "'Output/Probe points')");
+                         "'Output/Probes/Points')");
     std::string header;
     std::getline(in, header);
     const unsigned int n_columns = split_and_trim(header, ',').size();

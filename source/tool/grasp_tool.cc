@@ -7,6 +7,7 @@
 #include <tissuefem/tool/grasp_tool.h>
 
 #include <cmath>
+#include <fstream>
 #include <iomanip>
 #include <sstream>
 
@@ -323,7 +324,7 @@ namespace tissuefem::tool
 
   template <int dim>
   void
-  GraspTool<dim>::open(const std::string &directory)
+  GraspTool<dim>::connect(const std::string &directory)
   {
     // Every process takes part in the link (it shares the positions).
     if (parameters.live_port >= 0)
@@ -332,32 +333,11 @@ namespace tissuefem::tool
                                         dim,
                                         1. / parameters.haptic_rate,
                                         directory + "/live_port");
-    if (!parallel_tools::is_root())
-      return;
-    const char *names[3] = {"x", "y", "z"};
-    force_file.open(directory + "/tool_force.csv");
-    haptic_file.open(directory + "/haptic_force.csv");
-    require(force_file && haptic_file,
-            "Output/Directory",
-            "cannot create tool_force.csv or haptic_force.csv in '" + directory
-              + "'");
-    force_file << "time,holding";
-    for (unsigned int d = 0; d < dim; ++d)
-      force_file << ",tool_" << names[d];
-    for (unsigned int d = 0; d < dim; ++d)
-      force_file << ",force_" << names[d];
-    force_file << '\n';
-    haptic_file << "time";
-    for (unsigned int d = 0; d < dim; ++d)
-      haptic_file << ",force_" << names[d];
-    haptic_file << ",error\n";
-    force_file << std::setprecision(10);
-    haptic_file << std::setprecision(10);
   }
 
 
   template <int dim>
-  Tensor<1, dim>
+  Record<dim>
   GraspTool<dim>::record(const time::State &state, solid::Solid<dim> &solid)
   {
     const auto     values = solid.held_force(state.u, state.a, state.time);
@@ -365,7 +345,11 @@ namespace tissuefem::tool
     for (unsigned int d = 0; d < dim; ++d)
       force[d] = values[d];
     const Tensor<1, dim> position = displacement(state.time);
-    max_force                     = std::max(max_force, force.norm());
+    Record<dim>          result;
+    result.position = position;
+    result.force    = force;
+    result.engaged  = holding;
+    max_force       = std::max(max_force, force.norm());
 
     // Haptic updates in (t_n, t_{n+1}], extrapolated from data up to t_n.
     if (last_time)
@@ -387,16 +371,8 @@ namespace tissuefem::tool
             const double error = (estimate - reference).norm();
             max_error          = std::max(max_error, error);
             sum_error += error;
-            if (haptic_file.is_open())
-              {
-                haptic_file << tau;
-                for (unsigned int d = 0; d < dim; ++d)
-                  haptic_file << ',' << estimate[d];
-                haptic_file << ',' << error << '\n';
-              }
+            result.haptic.push_back({tau, estimate, error});
           }
-        if (haptic_file.is_open())
-          haptic_file << std::flush;
         // Update the rate and the secant stiffness (Broyden), unless the
         // tool grasped or let go in between (a jump, not a trend).
         if (holding && held_at_last_record)
@@ -440,16 +416,7 @@ namespace tissuefem::tool
         link->set_model(model);
         link->set_stepping(false);
       }
-    if (force_file.is_open())
-      {
-        force_file << state.time << ',' << (holding ? 1 : 0);
-        for (unsigned int d = 0; d < dim; ++d)
-          force_file << ',' << position[d];
-        for (unsigned int d = 0; d < dim; ++d)
-          force_file << ',' << force[d];
-        force_file << std::endl;
-      }
-    return force;
+    return result;
   }
 
 

@@ -11,7 +11,7 @@
 namespace tissuefem::postprocess
 {
   /**
-   * probes.csv: the displacement (length units) at the 'Output/Probe points'
+   * probes.csv: the displacement (length units) at the 'Output/Probes/Points'
    * (reference coordinates) every step, long form (time, probe, X, Y[, Z],
    * ux, uy[, uz]); and in the summary file, every 'Summary interval' steps,
    * 't = T probe P u = ...'. The probes follow mesh changes (they listen to

@@ -7,7 +7,7 @@
 namespace tissuefem::postprocess
 {
   /**
-   * reactions.csv: per step, the force each 'Output/Reaction boundary ids'
+   * reactions.csv: per step, the force each 'Output/Reactions/Boundary ids'
    * boundary applies to the body (force units; the sum of the unconstrained
    * nodal residual over the boundary's nodes); and in the summary file,
    * every 'Summary interval' steps, 't = T boundary B reaction = ...'.

@@ -2,14 +2,24 @@
 
 #include <tissuefem/postprocess/interface.h>
 
+#include <fstream>
+
 namespace tissuefem::postprocess
 {
   /**
-   * With a tool: after every step, the force the tissue exerts on it (force
-   * units). The tool writes tool_force.csv and haptic_force.csv (see
-   * tool/grasp_tool.h) and feeds its haptic extrapolation; the summary file
-   * gets 't = T tool force = ...' every step; the end of the run the tool's
-   * report (updates, share within the haptic budget, extrapolation error).
+   * With a tool, after every step, from what the tool reports
+   * (tool::Record):
+   * - tool_force.csv: time, whether the tool acts on the tissue ('holding',
+   *   0 or 1), its displacement d(t) (length units) and the force the
+   *   tissue exerts on it (force units);
+   * - haptic_force.csv: the forces sent to a haptic device between the
+   *   steps (time, force, and 'error', the distance from the force the
+   *   simulation then computed, force units);
+   * - the summary file: 't = T tool force = ...' every step;
+   * - at the end of the run, the tool's report (haptic updates, share
+   *   within the haptic budget, extrapolation error).
+   * Process 0 writes; rows are flushed every step, so a live session that
+   * ends abruptly leaves whole rows.
    */
   template <int dim>
   class ToolForce : public Interface<dim>
@@ -24,10 +34,15 @@ namespace tissuefem::postprocess
     {
     }
 
-
-    /// Lets the tool create its files (and open its live link).
+    /// Creates the two files and lets the tool open its device link.
     void
     open() override;
+
+    std::vector<std::string>
+    files() const override;
+
+    void
+    restore(const std::vector<std::string> &lines) override;
 
     void
     execute(const Step &step) override;
@@ -38,5 +53,6 @@ namespace tissuefem::postprocess
            output::RunRecord &record) override;
 
   private:
+    std::ofstream force_file, haptic_file;
   };
 } // namespace tissuefem::postprocess

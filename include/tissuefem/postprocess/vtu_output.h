@@ -7,7 +7,7 @@
 namespace tissuefem::postprocess
 {
   /**
-   * The fields for ParaView every 'Output/VTU interval' steps (and at t =
+   * The fields for ParaView every 'Output/VTU/Interval' steps (and at t =
    * 0): solution-NNNNN.pvtu naming one solution-NNNNN.P.vtu piece per MPI
    * process, and the series solution.pvd. Fields: displacement and velocity
    * (length and length per time units), J = det F, the von Mises Cauchy

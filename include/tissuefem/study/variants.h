@@ -53,7 +53,7 @@ namespace tissuefem::study
 
   /// Settings from "Path/Name = value; Path/Name = value" (';' separates,
   /// '&' does inside braces); a piece without '=' belongs to the value
-  /// before it ("Output/Probe points = 0, 0; 1, 1"). Throws InputError
+  /// before it ("Output/Probes/Points = 0, 0; 1, 1"). Throws InputError
   /// naming @p parameter.
   std::vector<Setting>
   parse_settings(const std::string &text,

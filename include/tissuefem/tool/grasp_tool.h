@@ -9,7 +9,6 @@
 #include <tissuefem/tool/interface.h>
 #include <tissuefem/tool/live_link.h>
 
-#include <fstream>
 #include <memory>
 #include <optional>
 #include <string>
@@ -44,16 +43,16 @@ namespace tissuefem::tool
    * 'Trajectory' expression of t or the positions of a recorded
    * 'Trajectory file'; at 'Release time' they are let go.
    *
-   * After every simulation step the force the tissue exerts on the tool
-   * (minus the reaction at the held vertices) goes to tool_force.csv.
+   * After every simulation step it reports the force the tissue exerts on
+   * the tool (minus the reaction at the held vertices).
    * Between steps a haptic device needs forces at 'Haptic rate': they are
    * extrapolated from the steps so far, either linearly in time or
    * linearly in the tool's position with a stiffness estimated from the
    * observed force and position changes (a Broyden secant update, the
    * data-driven counterpart of Picinbono's force extrapolation from the
-   * contact nodes' stiffness), and written to haptic_force.csv with their
-   * error against the force the simulation then computed (interpolated
-   * linearly between its steps to the haptic instant).
+   * contact nodes' stiffness), and reported with their error against the force
+   * the simulation then computed (interpolated linearly between its steps to
+   * the haptic instant).
    */
   template <int dim>
   class GraspTool : public Interface<dim>
@@ -78,10 +77,10 @@ namespace tissuefem::tool
     void
     act(const time::State &state, solid::Solid<dim> &solid) override;
 
-    /// Opens tool_force.csv and haptic_force.csv in @p directory (process
-    /// 0 writes); in live mode also starts listening for the client.
+    /// In live mode, starts listening for the client (the port goes to
+    /// @p directory/live_port).
     void
-    open(const std::string &directory) override;
+    connect(const std::string &directory) override;
 
     /**
      * Live mode: receives positions from the client until they cover
@@ -96,9 +95,9 @@ namespace tissuefem::tool
     std::string
     live_end() const override;
 
-    /// Records the force after a step (every process calls) and returns
-    /// it (the force the tissue exerts on the tool, force units).
-    Tensor<1, dim>
+    /// The force after a step (every process calls), and the haptic
+    /// forces extrapolated for the instants since the previous step.
+    Record<dim>
     record(const time::State &state, solid::Solid<dim> &solid) override;
 
     /// The haptic report: updates, share within the budget, extrapolation
@@ -123,8 +122,6 @@ namespace tissuefem::tool
     std::vector<std::vector<double>>     table; // t, x, y[, z]
     bool                                 holding = false, released = false;
     double                               grasp_time_actual = 0;
-
-    std::ofstream force_file, haptic_file;
 
     // Force history for extrapolation.
     std::optional<double> last_time;

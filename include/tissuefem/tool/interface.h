@@ -10,10 +10,43 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace tissuefem::tool
 {
   using namespace dealii;
+
+  /**
+   * What a tool reports after a step. The 'tool force' postprocessor writes
+   * it (tool_force.csv, haptic_force.csv, the summary file); a tool writes
+   * no files itself.
+   */
+  template <int dim>
+  struct Record
+  {
+    /// The tool's displacement from where it started, d(t) (length units).
+    Tensor<1, dim> position;
+    /// The force the tissue exerts on the tool (force units).
+    Tensor<1, dim> force;
+    /// Whether the tool acts on the tissue (holds it, or touches it).
+    bool engaged = false;
+
+    /// A force sent to a haptic device between two steps.
+    struct HapticSample
+    {
+      /// When it was due (time units).
+      double time;
+      /// The force extrapolated from the steps before (force units).
+      Tensor<1, dim> force;
+      /// Its distance from the force the simulation then computed,
+      /// interpolated linearly between the steps to @p time (force units).
+      double error;
+    };
+    /// The haptic forces due in (previous step, this step], in order of
+    /// time; empty for a tool that drives no device.
+    std::vector<HapticSample> haptic;
+  };
+
 
   /**
    * A surgical instrument acting on the body: it changes the solid's
@@ -43,11 +76,13 @@ namespace tissuefem::tool
     act(const time::State &state, solid::Solid<dim> &solid)
       = 0;
 
-    /// Creates the tool's own files in @p directory (and opens any link to
-    /// a device). Called once, after all input has been checked.
+    /// Opens any link to a device (which may leave a file in
+    /// @p directory, the output directory). Called once, after all input
+    /// has been checked.
     virtual void
-    open(const std::string &directory)
-      = 0;
+    connect(const std::string & /*directory*/)
+    {
+    }
 
     /**
      * Waits until the tool's motion is known up to @p time (a live device);
@@ -67,9 +102,9 @@ namespace tissuefem::tool
       return {};
     }
 
-    /// After a step (every process calls): the force the tissue exerts on
-    /// the tool (force units), also written to the tool's own files.
-    virtual Tensor<1, dim>
+    /// After a step (every process calls): where the tool is, the force on
+    /// it, and the haptic forces sent since the previous step.
+    virtual Record<dim>
     record(const time::State &state, solid::Solid<dim> &solid) = 0;
 
     /// The end-of-run report (one or more lines, no trailing newline).
