@@ -1,19 +1,41 @@
 #include <tissuefem/output/output_files.h>
 #include <tissuefem/postprocess/tool_force.h>
 
+#include <algorithm>
 #include <iomanip>
 #include <sstream>
 
 namespace tissuefem::postprocess
 {
+  namespace
+  {
+    /// A name fit for a file name: spaces become '_'.
+    std::string
+    file_part(std::string name)
+    {
+      std::replace(name.begin(), name.end(), ' ', '_');
+      return name;
+    }
+  } // namespace
+
+
   template <int dim>
   std::vector<std::string>
   ToolForce<dim>::files() const
   {
-    if (!this->context->scene.tool)
-      return {};
-    return {this->context->directory + "/tool_force.csv",
-            this->context->directory + "/haptic_force.csv"};
+    // One tool keeps the plain names; several name theirs.
+    const auto              &tools = this->context->scene.tools;
+    std::vector<std::string> result;
+    for (const auto &[name, tool] : tools)
+      {
+        const std::string suffix
+          = tools.size() == 1 ? "" : "-" + file_part(name);
+        result.push_back(this->context->directory + "/tool_force" + suffix
+                         + ".csv");
+        result.push_back(this->context->directory + "/haptic_force" + suffix
+                         + ".csv");
+      }
+    return result;
   }
 
 
@@ -21,26 +43,31 @@ namespace tissuefem::postprocess
   void
   ToolForce<dim>::open()
   {
-    auto &tool = this->context->scene.tool;
-    if (!tool)
-      return;
+    const auto &tools = this->context->scene.tools;
     // Every process takes part in a device link (it shares the positions).
-    tool->connect(this->context->directory);
+    for (const auto &[name, tool] : tools)
+      tool->connect(this->context->directory);
     if (!parallel_tools::is_root())
       return;
-    const char *names[3] = {"x", "y", "z"};
-    output::create_file(force_file, files()[0]);
-    output::create_file(haptic_file, files()[1]);
-    force_file << "time,holding";
-    for (unsigned int d = 0; d < dim; ++d)
-      force_file << ",tool_" << names[d];
-    for (unsigned int d = 0; d < dim; ++d)
-      force_file << ",force_" << names[d];
-    force_file << '\n' << std::flush;
-    haptic_file << "time";
-    for (unsigned int d = 0; d < dim; ++d)
-      haptic_file << ",force_" << names[d];
-    haptic_file << ",error\n" << std::flush;
+    const std::vector<std::string> names = files();
+    streams.resize(names.size());
+    const char *axes[3] = {"x", "y", "z"};
+    for (unsigned int i = 0; i < names.size(); i += 2)
+      {
+        std::ofstream &force = streams[i], &haptic = streams[i + 1];
+        output::create_file(force, names[i]);
+        output::create_file(haptic, names[i + 1]);
+        force << "time,holding";
+        for (unsigned int d = 0; d < dim; ++d)
+          force << ",tool_" << axes[d];
+        for (unsigned int d = 0; d < dim; ++d)
+          force << ",force_" << axes[d];
+        force << '\n' << std::flush;
+        haptic << "time";
+        for (unsigned int d = 0; d < dim; ++d)
+          haptic << ",force_" << axes[d];
+        haptic << ",error\n" << std::flush;
+      }
   }
 
 
@@ -48,10 +75,12 @@ namespace tissuefem::postprocess
   void
   ToolForce<dim>::restore(const std::vector<std::string> &)
   {
-    if (!this->context->scene.tool || !parallel_tools::is_root())
+    if (!parallel_tools::is_root())
       return;
-    output::append_to_file(force_file, files()[0]);
-    output::append_to_file(haptic_file, files()[1]);
+    const std::vector<std::string> names = files();
+    streams.resize(names.size());
+    for (unsigned int i = 0; i < names.size(); ++i)
+      output::append_to_file(streams[i], names[i]);
   }
 
 
@@ -59,29 +88,44 @@ namespace tissuefem::postprocess
   void
   ToolForce<dim>::execute(const Step &step)
   {
-    auto &tool = this->context->scene.tool;
-    if (!tool)
-      return;
-    const tool::Record<dim> record
-      = tool->record(step.state, *this->context->scene.solid);
-    this->context->summary.line(
-      output::vector_line(step.state.time, "tool force", record.force, dim));
-    if (!parallel_tools::is_root())
-      return;
+    const auto  &tools = this->context->scene.tools;
+    unsigned int i     = 0;
+    for (const auto &[name, tool] : tools)
+      {
+        const tool::Record<dim> record
+          = tool->record(step.state, *this->context->scene.solid);
+        const std::string label
+          = tools.size() == 1 ? "tool force" : "tool force (" + name + ")";
+        this->context->summary.line(
+          output::vector_line(step.state.time, label, record.force, dim));
+        if (parallel_tools::is_root())
+          write(record, step.state.time, streams[i], streams[i + 1]);
+        i += 2;
+      }
+  }
+
+
+  template <int dim>
+  void
+  ToolForce<dim>::write(const tool::Record<dim> &record,
+                        const double             time,
+                        std::ofstream           &force,
+                        std::ofstream           &haptic)
+  {
     for (const auto &sample : record.haptic)
       {
-        haptic_file << sample.time;
+        haptic << sample.time;
         for (unsigned int d = 0; d < dim; ++d)
-          haptic_file << ',' << sample.force[d];
-        haptic_file << ',' << sample.error << '\n';
+          haptic << ',' << sample.force[d];
+        haptic << ',' << sample.error << '\n';
       }
-    haptic_file << std::flush;
-    force_file << step.state.time << ',' << (record.engaged ? 1 : 0);
+    haptic << std::flush;
+    force << time << ',' << (record.engaged ? 1 : 0);
     for (unsigned int d = 0; d < dim; ++d)
-      force_file << ',' << record.position[d];
+      force << ',' << record.position[d];
     for (unsigned int d = 0; d < dim; ++d)
-      force_file << ',' << record.force[d];
-    force_file << '\n' << std::flush;
+      force << ',' << record.force[d];
+    force << '\n' << std::flush;
   }
 
 
@@ -91,7 +135,7 @@ namespace tissuefem::postprocess
                          const RunTotals &,
                          output::RunRecord &)
   {
-    if (auto &tool = this->context->scene.tool)
+    for (const auto &[name, tool] : this->context->scene.tools)
       parallel_tools::screen() << tool->summary() << std::endl;
   }
 
@@ -102,7 +146,8 @@ namespace tissuefem::postprocess
   TISSUEFEM_REGISTER_POSTPROCESSOR(
     ToolForce,
     "tool force",
-    "with a tool: tool_force.csv (the force on it every step), "
+    "with tools: tool_force.csv (the force on the tool every step), "
     "haptic_force.csv (the forces sent to a haptic device between steps) "
-    "and the haptic report.")
+    "and the haptic report; with several tools, one pair of files each, "
+    "named tool_force-NAME.csv and haptic_force-NAME.csv.")
 } // namespace tissuefem::postprocess

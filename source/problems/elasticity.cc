@@ -42,7 +42,7 @@ namespace tissuefem::problems
   Elasticity<dim>::setup()
   {
     scene = std::make_unique<Scene<dim>>(prm, run_context.parameter_directory);
-    if (scene->tool)
+    if (!scene->tools.empty())
       require(refinement_parameters.indicator == "none",
               "Mesh refinement/Indicator",
               "must be 'none' with a tool (held vertices are those of the "
@@ -86,8 +86,9 @@ namespace tissuefem::problems
   Elasticity<dim>::move_tool(time::State &state)
   {
     // The constraints change; the solid announces it (connect_to_changes).
-    if (scene->tool && scene->tool->due(state.time))
-      scene->tool->act(state, *scene->solid);
+    for (auto &[name, tool] : scene->tools)
+      if (tool->due(state.time))
+        tool->act(state, *scene->solid);
   }
 
 
@@ -128,7 +129,7 @@ namespace tissuefem::problems
     if (!integrator->checkpointable())
       return "integrator '" + time_parameters.integrator
              + "' cannot be checkpointed (with these settings)";
-    if (scene->tool)
+    if (!scene->tools.empty())
       return "a scene with a tool cannot be checkpointed";
     if (adaptation->enabled())
       return "a scene with mesh refinement cannot be checkpointed";
@@ -406,16 +407,15 @@ namespace tissuefem::problems
   Elasticity<dim>::take_step(time::State &state, time::StepReport &report)
   {
     const double end_time = time_parameters.end_time;
-    auto        &tool     = scene->tool;
     // A live tool: positions must cover the step before it starts.
-    if (tool
-        && !tool->synchronize(
-          std::min(state.time + time_parameters.time_step, end_time)))
-      {
-        parallel_tools::screen() << "live session ended at t = " << state.time
-                                 << ": " << tool->live_end() << std::endl;
-        return false;
-      }
+    for (auto &[name, tool] : scene->tools)
+      if (!tool->synchronize(
+            std::min(state.time + time_parameters.time_step, end_time)))
+        {
+          parallel_tools::screen() << "live session ended at t = " << state.time
+                                   << ": " << tool->live_end() << std::endl;
+          return false;
+        }
     move_tool(state);
     const auto start = std::chrono::steady_clock::now();
     report           = integrator->advance(state, end_time);

@@ -59,19 +59,13 @@ namespace tissuefem
     // Every registered kind of tool the file asks for.
     for (const auto &[name, entry] : tool::ToolRegistry<dim>::instance().all())
       if (auto t = entry.create(prm, triangulation))
-        {
-          require(!tool,
-                  "Tool",
-                  "asks for more than one tool ('" + name
-                    + "' and another); a scene holds one tool");
-          tool = std::move(t);
-        }
+        tools.emplace(name, std::move(t));
 
     boundary::ManufacturedParameters manufactured_parameters;
     manufactured_parameters.parse_parameters(prm);
     if (manufactured_parameters.enabled)
       {
-        require(!tool,
+        require(tools.empty(),
                 "Manufactured solution/Enabled",
                 "cannot be combined with a tool");
         manufactured = std::make_unique<boundary::ManufacturedSolution<dim>>(

@@ -3,11 +3,12 @@
 #include <tissuefem/postprocess/interface.h>
 
 #include <fstream>
+#include <vector>
 
 namespace tissuefem::postprocess
 {
   /**
-   * With a tool, after every step, from what the tool reports
+   * With tools, after every step, from what each tool reports
    * (tool::Record):
    * - tool_force.csv: time, whether the tool acts on the tissue ('holding',
    *   0 or 1), its displacement d(t) (length units) and the force the
@@ -18,6 +19,9 @@ namespace tissuefem::postprocess
    * - the summary file: 't = T tool force = ...' every step;
    * - at the end of the run, the tool's report (haptic updates, share
    *   within the haptic budget, extrapolation error).
+   * With several tools each has its own pair of files, tool_force-NAME.csv
+   * and haptic_force-NAME.csv (NAME: the tool's registered name, spaces as
+   * '_'), and its summary lines say 'tool force (NAME)'.
    * Process 0 writes; rows are flushed every step, so a live session that
    * ends abruptly leaves whole rows.
    */
@@ -53,6 +57,15 @@ namespace tissuefem::postprocess
            output::RunRecord &record) override;
 
   private:
-    std::ofstream force_file, haptic_file;
+    /// Writes one step's rows of one tool.
+    static void
+    write(const tool::Record<dim> &record,
+          const double             time,
+          std::ofstream           &force,
+          std::ofstream           &haptic);
+
+    /// Per tool, in the order of files(): its tool_force and haptic_force
+    /// files (process 0).
+    std::vector<std::ofstream> streams;
   };
 } // namespace tissuefem::postprocess

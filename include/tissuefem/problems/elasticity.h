@@ -70,7 +70,7 @@ namespace tissuefem::problems
     void
     create_postprocessors();
 
-    /// Lets the tool grasp or release if due (before a step).
+    /// Lets each tool grasp or release if due (before a step).
     void
     move_tool(time::State &state);
 
@@ -97,7 +97,7 @@ namespace tissuefem::problems
                 const time::StepReport &report,
                 const time::State      &state);
 
-    /// Lets the tool act and the integrator take one step (@p report);
+    /// Lets the tools act and the integrator take one step (@p report);
     /// false if a live session ended before it.
     bool
     take_step(time::State &state, time::StepReport &report);

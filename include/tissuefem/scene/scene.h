@@ -11,6 +11,7 @@
 #include <tissuefem/solid/solid.h>
 #include <tissuefem/tool/interface.h>
 
+#include <map>
 #include <memory>
 #include <string>
 
@@ -69,8 +70,9 @@ namespace tissuefem
     std::unique_ptr<boundary::ManufacturedSolution<dim>> manufactured;
     std::unique_ptr<solid::Discretization<dim>>          discretization;
     std::unique_ptr<solid::Solid<dim>>                   solid;
-    /// The tool 'Tool/Enabled' asks for, or null.
-    std::unique_ptr<tool::Interface<dim>> tool;
+    /// The tools the file asks for (none, one, or one of each registered
+    /// kind), by their registered names.
+    std::map<std::string, std::unique_ptr<tool::Interface<dim>>> tools;
 
   private:
     /// Initial and boundary data must be finite where they are used.
