@@ -24,10 +24,10 @@ namespace tissuefem::geometry
                       const std::string  &extension,
                       Triangulation<dim> &triangulation)
     {
-      GridIn<dim>        grid_in(triangulation);
-      std::ifstream      in(file);
-      const unsigned int reoriented
-        = extension == ".msh" ? count_inverted_gmsh_simplices(file, dim) : 0;
+      GridIn<dim>      grid_in(triangulation);
+      std::ifstream    in(file);
+      const GmshSurvey survey
+        = extension == ".msh" ? survey_gmsh(file, dim) : GmshSurvey();
       try
         {
           if (extension == ".msh")
@@ -47,12 +47,24 @@ namespace tissuefem::geometry
           throw InputError("Mesh file '" + file
                            + "' could not be read: " + one_line_message(e));
         }
-      if (reoriented > 0)
+      if (survey.inverted > 0)
         parallel_tools::screen()
-          << "Mesh file '" << file << "': " << reoriented
+          << "Mesh file '" << file << "': " << survey.inverted
           << " cells had their vertices in inverted order (negative volume) "
              "and were reoriented by the reader (a safe repair: the cell is "
              "the same)."
+          << std::endl;
+      if (!survey.repeated_numbers.empty())
+        parallel_tools::screen()
+          << "Mesh file '" << file << "': "
+          << (survey.repeated_numbers.size() == 1
+                ? "element number "
+                : std::to_string(survey.repeated_numbers.size())
+                    + " element numbers are repeated, the first: ")
+          << survey.repeated_numbers[0] << " is used by "
+          << survey.repeated_uses[0]
+          << " elements; the numbers carry no meaning here (cells are "
+             "numbered anew), so every element is kept."
           << std::endl;
     }
   } // namespace

@@ -154,13 +154,15 @@ namespace tissuefem::geometry
                        + first_few(inverted));
   }
 
-  unsigned int
-  count_inverted_gmsh_simplices(const std::string &file, const int dim)
+
+  GmshSurvey
+  survey_gmsh(const std::string &file, const int dim)
   {
     std::ifstream                         in(file);
     std::map<long, std::array<double, 3>> nodes;
     std::string                           line;
-    unsigned int                          inverted = 0;
+    GmshSurvey                            survey;
+    std::map<long, unsigned int>          uses; // element number -> count
     // Gmsh 1.0 ($NOD, $ELM: id type phys elem n nodes...) and 2.x ASCII
     // ($Nodes, $Elements: id type n_tags tags... nodes...).
     enum
@@ -176,7 +178,7 @@ namespace tissuefem::geometry
         // Gmsh 4 lists nodes and elements in blocks: not counted here.
         if (line.rfind("$MeshFormat", 0) == 0 && std::getline(in, line)
             && line.rfind("4", 0) == 0)
-          return 0;
+          return {};
         if (line.rfind("$NOD", 0) == 0 || line.rfind("$Nodes", 0) == 0)
           {
             section  = node_list;
@@ -213,7 +215,9 @@ namespace tissuefem::geometry
           }
         long id, type, n_nodes = 0;
         if (!(fields >> id >> type))
-          return 0;
+          return {};
+        if (++uses[id] == 2)
+          survey.repeated_numbers.push_back(id);
         if (version2)
           {
             long n_tags, tag;
@@ -235,7 +239,7 @@ namespace tissuefem::geometry
           {
             long node;
             if (!(fields >> node) || nodes.count(node) == 0)
-              return 0; // the reader reports it
+              return {}; // the reader reports it
             x[k] = nodes[node];
           }
         double e[3][3];
@@ -248,9 +252,11 @@ namespace tissuefem::geometry
                          - e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0])
                          + e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
         if (volume < 0)
-          ++inverted;
+          ++survey.inverted;
       }
-    return inverted;
+    for (const long number : survey.repeated_numbers)
+      survey.repeated_uses.push_back(uses[number]);
+    return survey;
   }
 
 

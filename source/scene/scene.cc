@@ -1,6 +1,7 @@
 #include <tissuefem/base/input_error.h>
 #include <tissuefem/base/parallel.h>
 #include <tissuefem/base/parameter_tools.h>
+#include <tissuefem/geometry/mesh_parts.h>
 #include <tissuefem/scene/scene.h>
 #include <tissuefem/time/interface.h>
 
@@ -76,6 +77,11 @@ namespace tissuefem
         manufactured->impose_on(*boundary_conditions);
       }
 
+    // A tool may hold a part only once it acts; the check needs the
+    // constraints known up front.
+    if (!integrates_in_time(prm) && tools.empty())
+      check_every_part_held();
+
     solid::FiniteElementParameters fe_parameters;
     fe_parameters.parse_parameters(prm);
     discretization = std::make_unique<solid::Discretization<dim>>(triangulation,
@@ -104,6 +110,56 @@ namespace tissuefem
     require(all_finite(u),
             "Boundary conditions/Dirichlet",
             "is not finite at some boundary node at t = 0");
+  }
+
+
+  template <int dim>
+  void
+  Scene<dim>::check_every_part_held() const
+  {
+    const geometry::MeshParts<dim> parts(triangulation);
+    // Per part, the displacement components some Dirichlet face fixes.
+    std::vector<std::vector<bool>> fixed(parts.n_parts(),
+                                         std::vector<bool>(dim, false));
+    for (const auto &cell : triangulation.active_cell_iterators())
+      for (const auto &face : cell->face_iterators())
+        if (face->at_boundary())
+          for (const auto &d : boundary_conditions->dirichlet)
+            if (d.id == face->boundary_id())
+              for (unsigned int c = 0; c < dim; ++c)
+                if (d.mask[c])
+                  fixed[parts.part_of_cell[cell->active_cell_index()]][c]
+                    = true;
+
+    const char        *axes[3] = {"x", "y", "z"};
+    std::ostringstream list;
+    unsigned int       n_loose = 0, n_named = 0;
+    for (unsigned int p = 0; p < parts.n_parts(); ++p)
+      {
+        std::string  free;
+        unsigned int n_free = 0;
+        for (unsigned int c = 0; c < dim; ++c)
+          if (!fixed[p][c] && ++n_free)
+            free += std::string(free.empty() ? "" : ", ") + axes[c];
+        if (n_free == 0)
+          continue;
+        if (++n_loose > 5)
+          continue;
+        ++n_named;
+        list << (n_named > 1 ? "; " : "") << "part " << p + 1 << " (cell "
+             << parts.first_cell[p] << ", centre " << parts.a_point[p] << ") "
+             << (n_free == dim ? "held by nothing" : "free along " + free);
+      }
+    if (n_loose > n_named)
+      list << "; and " << n_loose - n_named << " more";
+    require(n_loose == 0,
+            "Boundary conditions/Dirichlet",
+            "a quasistatic solve needs every part of the body held, but "
+              + std::to_string(n_loose) + " of its "
+              + std::to_string(parts.n_parts())
+              + " face-connected parts are not: " + list.str()
+              + ". Hold each part in every direction (a Dirichlet boundary "
+                "id on it), or integrate in time");
   }
 
 

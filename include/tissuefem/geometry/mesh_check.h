@@ -3,6 +3,7 @@
 #include <deal.II/grid/tria.h>
 
 #include <string>
+#include <vector>
 
 namespace tissuefem::geometry
 {
@@ -27,12 +28,25 @@ namespace tissuefem::geometry
   void
   check_mesh(const Triangulation<dim> &triangulation, const std::string &file);
 
+  /// What survey_gmsh() finds in a Gmsh file.
+  struct GmshSurvey
+  {
+    /// Triangles (dim 2) or tetrahedra (dim 3) whose vertices are listed
+    /// in inverted order (negative volume).
+    unsigned int inverted = 0;
+    /// Element numbers used by more than one element, in order of first
+    /// repetition, and how many elements use each.
+    std::vector<long>         repeated_numbers;
+    std::vector<unsigned int> repeated_uses;
+  };
+
   /**
-   * The number of triangles (@p dim = 2) or tetrahedra (3) of a Gmsh ASCII
-   * file (formats 1.0 and 2.x) whose vertices are listed in inverted order
-   * (negative volume). deal.II's reader reorients them silently; tissuefem
-   * says so. 0 where the file cannot be parsed (the reader reports that).
+   * Surveys a Gmsh ASCII file (formats 1.0 and 2.x) for what deal.II's
+   * reader passes over in silence: simplices in inverted order (it
+   * reorients them) and element numbers used twice (it numbers cells
+   * itself). Empty where the file cannot be parsed (the reader reports
+   * that) or is of format 4.
    */
-  unsigned int
-  count_inverted_gmsh_simplices(const std::string &file, const int dim);
+  GmshSurvey
+  survey_gmsh(const std::string &file, const int dim);
 } // namespace tissuefem::geometry

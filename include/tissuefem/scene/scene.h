@@ -78,5 +78,14 @@ namespace tissuefem
     /// Initial and boundary data must be finite where they are used.
     void
     check_initial_data() const;
+
+    /**
+     * A quasistatic solve (no inertia) has a unique answer only if every
+     * face-connected part of the body is held: throws InputError (one
+     * line, before any output) naming the parts that no Dirichlet boundary
+     * holds, or holds in some directions only, with a point of each.
+     */
+    void
+    check_every_part_held() const;
   };
 } // namespace tissuefem
