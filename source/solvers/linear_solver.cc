@@ -18,9 +18,66 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iostream>
+#include <sstream>
 
 namespace tissuefem::solvers
 {
+  namespace
+  {
+    /**
+     * Keeps what Amesos writes to std::cerr while it lives (Amesos_Mumps
+     * reports a failed factorization there in several lines); the failure
+     * then reaches the user as tissuefem's one-line SolverError, with the
+     * code that says why.
+     */
+    class CerrCapture
+    {
+    public:
+      CerrCapture()
+          : previous(std::cerr.rdbuf(text.rdbuf()))
+      {
+      }
+      ~CerrCapture()
+      {
+        std::cerr.rdbuf(previous);
+      }
+
+      /// The integer after "INFOG(1) = " in what was written, or "".
+      std::string
+      mumps_infog1() const
+      {
+        const std::string all = text.str();
+        const auto        at  = all.find("INFOG(1) = ");
+        if (at == std::string::npos)
+          return "";
+        std::istringstream value(all.substr(at + 11));
+        long               code = 0;
+        return value >> code ? std::to_string(code) : "";
+      }
+
+    private:
+      std::ostringstream text;
+      std::streambuf    *previous;
+    };
+
+    /// Why Amesos' numeric factorization failed, from MUMPS' INFOG(1).
+    std::string
+    factorization_failure(const std::string &type, const std::string &infog1)
+    {
+      if (type != "MUMPS")
+        return "the matrix is singular or too badly conditioned to factorize "
+               "(KLU)";
+      if (infog1 == "-10")
+        return "the matrix is numerically singular (MUMPS INFOG(1) = -10)";
+      if (infog1 == "-9" || infog1 == "-8" || infog1 == "-13")
+        return "MUMPS ran out of memory (INFOG(1) = " + infog1 + ")";
+      return "MUMPS failed (INFOG(1) = " + (infog1.empty() ? "?" : infog1)
+             + ")";
+    }
+  } // namespace
+
+
   void
   LinearSolverParameters::declare_parameters(ParameterHandler &prm)
   {
@@ -195,8 +252,16 @@ namespace tissuefem::solvers
                            problem));
           if (!amesos)
             throw SolverError("Amesos has no " + type);
+          // MUMPS prints nothing itself (its error, diagnostic and global
+          // streams off); failures are reported by the codes it returns.
+          Teuchos::ParameterList list;
+          for (const char *stream : {"ICNTL(1)", "ICNTL(2)", "ICNTL(3)"})
+            list.sublist("mumps").set(stream, -1);
+          list.sublist("mumps").set("ICNTL(4)", 0);
+          amesos->SetParameters(list);
+          CerrCapture capture;
           if (amesos->SymbolicFactorization() != 0)
-            throw SolverError("symbolic factorization failed");
+            throw SolverError("symbolic factorization failed (" + type + ")");
           ++stats.setups;
           stats.setup_seconds += seconds_since(start);
         }
@@ -206,14 +271,16 @@ namespace tissuefem::solvers
       if (refactorize || !factorized)
         {
           factorized = false;
+          CerrCapture capture;
           if (amesos->NumericFactorization() != 0)
-            throw SolverError("numeric factorization failed (singular "
-                              "Jacobian?)");
+            throw SolverError(
+              factorization_failure(type, capture.mumps_infog1()));
           factorized = true;
           ++stats.factorizations;
         }
+      CerrCapture capture;
       if (amesos->Solve() != 0)
-        throw SolverError("triangular solves failed");
+        throw SolverError("triangular solves failed (" + type + ")");
     }
 
     /// UMFPACK on the rows of @p M: the symbolic analysis once, the
@@ -258,6 +325,8 @@ namespace tissuefem::solvers
                                                  &numeric,
                                                  control,
                                                  nullptr);
+          if (status == UMFPACK_WARNING_singular_matrix)
+            throw SolverError("the matrix is singular (UMFPACK status 1)");
           if (status != UMFPACK_OK)
             throw SolverError("UMFPACK numeric factorization failed "
                               "(status "
