@@ -64,6 +64,7 @@ namespace tissuefem::adaptation
             c.traction->set_time(time);
             tractions[c.id] = c.traction.get();
           }
+        load_factor = bc.load_factor_at(time);
       }
 
       /// sum_F h_F int_F |r|^2 over the faces of @p cell, with r the
@@ -131,6 +132,8 @@ namespace tissuefem::adaptation
       std::map<types::boundary_id, ComponentMask>   held;
       std::map<types::boundary_id, Function<dim> *> tractions;
       Vector<double>                                t_value;
+      /// 'Load factor' at the time: it scales the tractions.
+      double load_factor = 1;
 
       /// int_F |P N - t|^2 over boundary face @p f (here), without the
       /// prescribed components.
@@ -153,7 +156,7 @@ namespace tissuefem::adaptation
               {
                 tractions[id]->vector_value(here.quadrature_point(q), t_value);
                 for (unsigned int c = 0; c < dim; ++c)
-                  r[c] -= t_value[c];
+                  r[c] -= load_factor * t_value[c];
               }
             for (unsigned int c = 0; c < dim; ++c)
               if (mask.size() == dim && mask[c])

@@ -4,7 +4,9 @@
 #include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/boundary/boundary_conditions.h>
 
+#include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <set>
 
 namespace tissuefem::boundary
@@ -41,6 +43,19 @@ namespace tissuefem::boundary
                         "Acceleration of gravity 'g_x, g_y, g_z' (m/s^2 if "
                         "SI); contributes rho_0 g per unit reference volume. "
                         "Only the first Dimension components are read.");
+      prm.declare_entry(
+        "Load factor",
+        "1",
+        Patterns::Anything(),
+        "lambda(t), a dimensionless function of t that multiplies every "
+        "load: gravity, body force and tractions. Prescribed displacements "
+        "are not scaled: their expressions name t themselves. '1' applies "
+        "the loads as given at every time; 'min(t, 1)' ramps them up over "
+        "the first time unit. In a quasistatic run the load then grows "
+        "with the steps, so that a step Newton cannot take is retried with "
+        "a smaller load increment (halved), and a run that stops at a "
+        "limit point reports the load factor it reached. Not with a "
+        "manufactured solution.");
       prm.declare_entry("Initial displacement",
                         "0",
                         Patterns::Anything(),
@@ -64,6 +79,7 @@ namespace tissuefem::boundary
     gravity              = prm.get("Gravity");
     initial_displacement = prm.get("Initial displacement");
     initial_velocity     = prm.get("Initial velocity");
+    load_factor          = prm.get("Load factor");
     prm.leave_subsection();
   }
 
@@ -136,8 +152,32 @@ namespace tissuefem::boundary
     const std::string neumann_name = "Boundary conditions/Neumann";
     for (const auto &[id, expressions] :
          parse_id_entries(parameters.neumann, neumann_name))
-      neumann.push_back(
-        {id, make_function<dim>(expressions, dim, neumann_name)});
+      {
+        neumann.push_back(
+          {id, make_function<dim>(expressions, dim, neumann_name)});
+        loads_name_time = loads_name_time || names_time(expressions);
+      }
+    loads_name_time = loads_name_time || names_time(parameters.body_force)
+                      || names_time(parameters.load_factor);
+    const std::string load_factor_name = "Boundary conditions/Load factor";
+    for (const char *space : {"x", "y", "z"})
+      {
+        std::string rest = parameters.load_factor;
+        for (char &c : rest)
+          if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_')
+            c = ' ';
+        require((" " + rest + " ").find(std::string(" ") + space + " ")
+                  == std::string::npos,
+                load_factor_name,
+                "must be a function of t only; '" + parameters.load_factor
+                  + "' names " + space);
+      }
+    load_factor_function
+      = make_function<dim>(parameters.load_factor, 1, load_factor_name);
+    load_factor = load_factor_at(0);
+    require(std::isfinite(load_factor),
+            load_factor_name,
+            "is not finite at t = 0");
 
     body_force         = make_function<dim>(parameters.body_force,
                                     dim,
@@ -168,6 +208,27 @@ namespace tissuefem::boundary
     for (auto &n : neumann)
       n.traction->set_time(time);
     body_force->set_time(time);
+    load_factor = load_factor_at(time);
+  }
+
+
+  template <int dim>
+  double
+  BoundaryConditions<dim>::load_factor_at(const double time) const
+  {
+    load_factor_function->set_time(time);
+    return load_factor_function->value(Point<dim>());
+  }
+
+
+  template <int dim>
+  bool
+  BoundaryConditions<dim>::changes_with_time() const
+  {
+    return loads_name_time
+           || std::any_of(dirichlet.begin(),
+                          dirichlet.end(),
+                          [](const Dirichlet &d) { return d.time_dependent; });
   }
 
 

@@ -66,6 +66,10 @@ namespace tissuefem
     manufactured_parameters.parse_parameters(prm);
     if (manufactured_parameters.enabled)
       {
+        require(Utilities::trim(boundary_parameters.load_factor) == "1",
+                "Boundary conditions/Load factor",
+                "must be 1 with a manufactured solution (whose body force "
+                "and boundary values are exact as they are)");
         require(tools.empty(),
                 "Manufactured solution/Enabled",
                 "cannot be combined with a tool");

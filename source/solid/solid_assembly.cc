@@ -277,6 +277,7 @@ namespace tissuefem::solid
                 for (unsigned int d = 0; d < dim; ++d)
                   load[d] += s.body_force[d];
               }
+            load *= boundary_conditions.load_factor;
           }
         if (request.inertia)
           for (unsigned int k = 0; k < n_scalar; ++k)
@@ -455,10 +456,12 @@ namespace tissuefem::solid
                 {
                   condition.traction->vector_value(fv.quadrature_point(q),
                                                    s.traction);
+                  const double scale
+                    = boundary_conditions.load_factor * fv.JxW(q);
                   for (unsigned int i = 0; i < cache.n_dofs; ++i)
                     copy.rhs[i]
                       -= s.traction[fe.system_to_component_index(i).first]
-                         * fv.shape_value(i, q) * fv.JxW(q);
+                         * fv.shape_value(i, q) * scale;
                 }
             }
   }

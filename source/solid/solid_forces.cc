@@ -201,6 +201,24 @@ namespace tissuefem::solid
   }
 
 
+  template <int dim>
+  bool
+  Solid<dim>::changes_with_time() const
+  {
+    // A tool's trajectory moves what it holds (a held tool standing still
+    // is rare enough not to be told apart).
+    return boundary_conditions.changes_with_time() || held.has_value();
+  }
+
+
+  template <int dim>
+  double
+  Solid<dim>::load_factor(const double time) const
+  {
+    return boundary_conditions.load_factor_at(time);
+  }
+
+
   // The class is instantiated in solid.cc; these members here.
 #define TISSUEFEM_INSTANTIATE(dim)                                               \
   template void Solid<dim>::internal_force(const VectorType &, VectorType &);    \
@@ -222,7 +240,9 @@ namespace tissuefem::solid
                                                    VectorType &);                \
   template std::vector<double> Solid<dim>::held_force(const VectorType &,        \
                                                       const VectorType &,        \
-                                                      double);
+                                                      double);                   \
+  template bool                Solid<dim>::changes_with_time() const;            \
+  template double              Solid<dim>::load_factor(const double) const;
   TISSUEFEM_INSTANTIATE(1)
   TISSUEFEM_INSTANTIATE(2)
   TISSUEFEM_INSTANTIATE(3)

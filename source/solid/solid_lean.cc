@@ -35,12 +35,14 @@ namespace tissuefem::solid
                                             : nullptr;
     input.w = request.inertia ? request.inertia->trilinos_vector()[0] : nullptr;
     input.mass_jacobian_coefficient = request.mass_jacobian_coefficient;
-    input.gravity                   = boundary_conditions.gravity;
-    input.internal                  = request.internal;
-    input.external                  = request.external;
-    input.jacobian                  = request.jacobian;
-    input.cells                     = request.cells;
-    const auto inverted_cells       = lean->evaluate(input);
+    boundary_conditions.set_time(request.time);
+    input.gravity
+      = boundary_conditions.load_factor * boundary_conditions.gravity;
+    input.internal            = request.internal;
+    input.external            = request.external;
+    input.jacobian            = request.jacobian;
+    input.cells               = request.cells;
+    const auto inverted_cells = lean->evaluate(input);
 
     std::vector<bool> inverted(cache.cells().size(), false);
     std::vector<std::tuple<unsigned int, double, Point<dim>>> report;

@@ -158,11 +158,31 @@ namespace tissuefem::time
         std::ostringstream message;
         message << "Newton failed at t = " << state.time + h
                 << " with dt = " << h << ": " << failure;
+        // Without inertia a step is the problem at its end time alone: if
+        // nothing changes with time, a shorter step is the same problem.
+        const bool quasistatic = mass_coefficient(h) == 0;
+        if (quasistatic && !context->solid.changes_with_time())
+          throw SolverError(
+            message.str()
+            + "; a smaller step cannot help: nothing in this quasistatic "
+              "problem changes with time, so every step is the same problem "
+              "(ramp the loads with 'Boundary conditions/Load factor', e.g. "
+              "'min(t, 1)')");
         if (halvings == context->time.max_step_halvings)
-          throw SolverError(message.str() + "; gave up after "
-                            + std::to_string(halvings)
-                            + " step halvings ('Time integration/Maximum "
-                              "step halvings')");
+          {
+            std::ostringstream reached;
+            if (quasistatic)
+              reached << "; the last equilibrium is at t = " << state.time
+                      << ", load factor "
+                      << context->solid.load_factor(state.time)
+                      << " (a limit point of the load, or a load step "
+                         "still too large)";
+            throw SolverError(message.str() + "; gave up after "
+                              + std::to_string(halvings)
+                              + " step halvings ('Time integration/Maximum "
+                                "step halvings')"
+                              + reached.str());
+          }
         parallel_tools::screen()
           << "  " << message.str() << "; retrying with dt = " << h / 2
           << std::endl;

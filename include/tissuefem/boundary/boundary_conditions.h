@@ -26,7 +26,7 @@ namespace tissuefem::boundary
     parse_parameters(ParameterHandler &prm);
 
     std::string dirichlet, neumann, body_force, gravity, initial_displacement,
-      initial_velocity;
+      initial_velocity, load_factor;
   };
 
   template <int dim>
@@ -52,9 +52,23 @@ namespace tissuefem::boundary
       std::unique_ptr<Function<dim>> traction;
     };
 
-    /// Sets the time at which all expressions are evaluated.
+    /// Sets the time at which all expressions are evaluated, and the load
+    /// factor to lambda(time).
     void
     set_time(const double time);
+
+    /// lambda(@p time) of 'Load factor' (dimensionless).
+    double
+    load_factor_at(const double time) const;
+
+    /**
+     * Whether anything the solid is given changes with time: a Dirichlet,
+     * Neumann or body force expression, or the load factor, names t. If
+     * not, a quasistatic problem is the same at every time, and a smaller
+     * step cannot help a failed one.
+     */
+    bool
+    changes_with_time() const;
 
     /// Throws InputError if a listed boundary id occurs on no boundary face.
     void
@@ -62,6 +76,10 @@ namespace tissuefem::boundary
 
     std::vector<Dirichlet> dirichlet;
     std::vector<Neumann>   neumann;
+    /// The loads (gravity, body force, tractions) are these times
+    /// 'load_factor', lambda(t) at the time of the last set_time():
+    /// consumers multiply by it.
+    double load_factor = 1;
     /// Force per unit reference volume (N/m^3 if SI), added to rho_0 * gravity.
     std::unique_ptr<Function<dim>> body_force;
     /// Whether every body force expression is the literal "0".
@@ -70,5 +88,11 @@ namespace tissuefem::boundary
     Tensor<1, dim>                 gravity;
     std::unique_ptr<Function<dim>> initial_displacement;
     std::unique_ptr<Function<dim>> initial_velocity;
+
+  private:
+    /// lambda(t), a function of t only (evaluated at the origin).
+    std::unique_ptr<Function<dim>> load_factor_function;
+    /// Whether a Neumann, body force or load factor expression names t.
+    bool loads_name_time = false;
   };
 } // namespace tissuefem::boundary

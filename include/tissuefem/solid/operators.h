@@ -176,6 +176,20 @@ namespace tissuefem::solid
     /// adapted mesh); methods with lumped masses do not support them.
     virtual bool
     has_hanging_nodes() const = 0;
+
+    /**
+     * Whether the loads or the prescribed displacements change with time
+     * (an expression names t, or a tool moves what it holds). If not, a
+     * quasistatic problem is the same at every time: a smaller step cannot
+     * help a failed one.
+     */
+    virtual bool
+    changes_with_time() const = 0;
+
+    /// The load factor lambda(@p time) that scales every load
+    /// ('Boundary conditions/Load factor', dimensionless).
+    virtual double
+    load_factor(const double time) const = 0;
     /// The consistent mass matrix, assembled on first use.
     virtual const MatrixType &
     mass_matrix()

@@ -158,6 +158,10 @@ namespace tissuefem::solid
 
     bool
     has_hanging_nodes() const override;
+    bool
+    changes_with_time() const override;
+    double
+    load_factor(const double time) const override;
 
     double
     stored_energy(const VectorType &u) const override;
