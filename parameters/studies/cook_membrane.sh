@@ -10,11 +10,12 @@
 #
 # Usage (from the repository top, after building):
 #   bash parameters/studies/cook_membrane.sh [path/to/tissuefem] [--test]
-# --test: only the nearly incompressible case, Q1 F-bar and P2-P0 F-bar on
-# 16, 32, 64 and plain Q1 on 16 and 64; exits non-zero unless the F-bar
-# elements are within 1% of their extrapolated limits at 64 x 64, agree
-# with each other to 1%, and plain Q1 at 16 x 16 is more than 10% below
-# (locking). This is the ctest 'studies/cook_membrane'.
+# --test: only the nearly incompressible case, Q1 F-bar, P2-P0 F-bar and
+# P1 with the nodal dilatation on 16, 32, 64, plain Q1 on 16 and plain P1
+# on 64; exits non-zero unless the locking-free elements are within 1% of
+# their extrapolated limits at 64 x 64 and their limits agree with Q1
+# F-bar's to 1%, and plain Q1 at 16 x 16 and plain P1 at 64 x 64 are more
+# than 10% below (locking). This is the ctest 'studies/cook_membrane'.
 set -euo pipefail
 exe=$(realpath "${1:-build/tissuefem}")
 mode=${2:-table}
@@ -38,6 +39,7 @@ tip() {
     P2) args+=(--set "Materials/Formulation=displacement" --set "Geometry/Cell type=simplex"
                --set "Finite element/Polynomial degree=2") ;;
     P2-P0-F-bar) args+=(--set "Geometry/Cell type=simplex" --set "Finite element/Polynomial degree=2") ;;
+    P1-nodal) args+=(--set "Materials/Formulation=nodal dilatation" --set "Geometry/Cell type=simplex") ;;
   esac
   if ! "$exe" "$prm" "${args[@]}" > "$work/log" 2>&1; then
     echo "failed"
@@ -56,7 +58,7 @@ limit() {
 if [ "$mode" = "--test" ]; then
   status=0
   declare -A limits
-  for name in Q1-F-bar P2-P0-F-bar; do
+  for name in Q1-F-bar P2-P0-F-bar P1-nodal; do
     a=$(tip $name 16 0.4999); b=$(tip $name 32 0.4999); c=$(tip $name 64 0.4999)
     l=$(limit "$a" "$b" "$c"); limits[$name]=$l
     off=$(awk -v c="$c" -v l="$l" 'BEGIN { printf "%.4f", (c - l) / l }')
@@ -64,10 +66,16 @@ if [ "$mode" = "--test" ]; then
     echo "$name: tip u_y 16/32/64 = $a $b $c, limit $l, 64 x 64 off by $off (below 0.01): $ok"
     [ "$ok" = ok ] || status=1
   done
-  agree=$(awk -v a="${limits[Q1-F-bar]}" -v b="${limits[P2-P0-F-bar]}" \
-          'BEGIN { d = (a - b) / b; print (d < 0.01 && d > -0.01) ? "ok" : "FAILED" }')
-  echo "Q1 F-bar and P2-P0 F-bar limits agree to 1%: $agree"
-  [ "$agree" = ok ] || status=1
+  for other in P2-P0-F-bar P1-nodal; do
+    agree=$(awk -v a="${limits[Q1-F-bar]}" -v b="${limits[$other]}" \
+            'BEGIN { d = (a - b) / b; print (d < 0.01 && d > -0.01) ? "ok" : "FAILED" }')
+    echo "Q1 F-bar and $other limits agree to 1%: $agree"
+    [ "$agree" = ok ] || status=1
+  done
+  p1=$(tip P1 64 0.4999)
+  locks=$(awk -v q="$p1" -v l="${limits[P1-nodal]}" 'BEGIN { print (q < 0.9 * l) ? "ok" : "FAILED" }')
+  echo "plain P1 at 64 x 64 locks (tip $p1 below 90% of the P1-nodal limit): $locks"
+  [ "$locks" = ok ] || status=1
   q1=$(tip Q1 16 0.4999)
   locks=$(awk -v q="$q1" -v l="${limits[Q1-F-bar]}" 'BEGIN { print (q < 0.9 * l) ? "ok" : "FAILED" }')
   echo "plain Q1 at 16 x 16 locks (tip $q1 below 90% of the limit): $locks"
@@ -75,7 +83,7 @@ if [ "$mode" = "--test" ]; then
   exit $status
 fi
 
-names=(Q1 Q1-F-bar Q2 Q2-P0-F-bar P1 P2 P2-P0-F-bar)
+names=(Q1 Q1-F-bar Q2 Q2-P0-F-bar P1 P1-nodal P2 P2-P0-F-bar)
 for nu in 0.4999 0.3; do
   echo
   echo "Cook's membrane, tip u_y (length units), mu = 80.194, nu = $nu"

@@ -133,7 +133,8 @@ namespace tissuefem::materials
       prm.declare_entry(
         "Formulation",
         "displacement",
-        Patterns::Selection("displacement|mean dilatation|edge length"),
+        Patterns::Selection(
+          "displacement|mean dilatation|nodal dilatation|edge length"),
         "'displacement': P(F) at quadrature points; 'mean dilatation': the "
         "F-bar form of the three-field Q1-P0 element (Simo, Taylor and "
         "Pister 1985; de Souza Neto et al. 1996): Psi is evaluated at Fbar = "
@@ -141,7 +142,13 @@ namespace tissuefem::materials
         "volumetric locking of nearly incompressible materials on "
         "quadrilaterals/hexahedra (Q1-P0, Q2-P0) and on P2 "
         "triangles/tetrahedra (P2-P0); it changes nothing on P1 simplices "
-        "(constant F), where it is refused; 'edge length': Jeffrey's "
+        "(constant F), where it is refused; 'nodal dilatation': the "
+        "locking-free linear triangle/tetrahedron (P1 only): F-bar with the "
+        "dilatation averaged at the vertices over the cells around each "
+        "(Bonet and Burton 1998's average nodal pressure element), which "
+        "removes the volumetric locking of plain P1 with any model at the "
+        "cost of a Jacobian that couples each cell to the cells around its "
+        "vertices' neighbours; 'edge length': Jeffrey's "
         "form (eqs 19-31), the element energy written through the squared "
         "edge lengths of linear simplices (P1 triangles/tetrahedra only, "
         "models written in C = F^T F: St Venant-Kirchhoff and the "
@@ -234,10 +241,11 @@ namespace tissuefem::materials
               ElasticConstants::from_young_poisson(E[i], nu[i]));
           }
       }
-    tangent_method              = parse_tangent_method(prm.get("Tangent"));
-    fibre_direction             = prm.get("Fibre direction");
-    edge_length_formulation     = prm.get("Formulation") == "edge length";
-    mean_dilatation_formulation = prm.get("Formulation") == "mean dilatation";
+    tangent_method               = parse_tangent_method(prm.get("Tangent"));
+    fibre_direction              = prm.get("Fibre direction");
+    edge_length_formulation      = prm.get("Formulation") == "edge length";
+    mean_dilatation_formulation  = prm.get("Formulation") == "mean dilatation";
+    nodal_dilatation_formulation = prm.get("Formulation") == "nodal dilatation";
     project_tangent = prm.get("Tangent projection") == "positive definite";
     prm.leave_subsection();
   }
@@ -253,6 +261,7 @@ namespace tissuefem::materials
           "Materials/Fibre direction"))
       , edge_length(parameters.edge_length_formulation)
       , mean_dilatation(parameters.mean_dilatation_formulation)
+      , nodal_dilatation(parameters.nodal_dilatation_formulation)
       , project(parameters.project_tangent)
   {
     for (unsigned int i = 0; i < parameters.model_names.size(); ++i)

@@ -2,6 +2,7 @@
 #include <deal.II/lac/lapack_full_matrix.h>
 
 #include <tissuefem/solid/mean_dilatation.h>
+#include <tissuefem/solid/nodal_dilatation.h>
 #include <tissuefem/solid/quantities.h>
 
 #include <limits>
@@ -11,15 +12,21 @@ namespace tissuefem::solid
   namespace
   {
     /// Calls @p f(cell, q, F, JxW) at every quadrature point of the locally
-    /// owned cells; with @p f_bar, F is the mean dilatation's Fbar (the
-    /// plain F in cells with some det F <= 0).
+    /// owned cells; with @p materials' mean or nodal dilatation, F is their
+    /// Fbar (the plain F in cells where Fbar is not defined).
     template <int dim, typename Callback>
     void
     for_each_deformation_gradient(const Discretization<dim> &discretization,
                                   const VectorType          &u,
                                   const Callback            &f,
-                                  const bool                 f_bar = false)
+                                  const materials::MaterialSet<dim> *materials
+                                  = nullptr)
     {
+      const bool f_bar = materials && materials->mean_dilatation_formulation();
+      const std::vector<double> theta
+        = materials && materials->nodal_dilatation_formulation()
+            ? NodalDilatation<dim>(discretization).dilatations(u)
+            : std::vector<double>();
       FEValues<dim>                    fe_values(*discretization.mapping,
                               *discretization.fe,
                               discretization.cell_quadrature,
@@ -41,6 +48,11 @@ namespace tissuefem::solid
               }
             if (f_bar)
               apply_mean_dilatation(F, JxW.data(), F.size());
+            if (!theta.empty())
+              for (auto &F_q : F)
+                if (theta[cell->active_cell_index()] / determinant(F_q) > 0)
+                  F_q = modified_deformation_gradient(
+                    F_q, theta[cell->active_cell_index()]);
             for (const unsigned int q : fe_values.quadrature_point_indices())
               f(cell, q, F[q], JxW[q]);
           }
@@ -65,7 +77,7 @@ namespace tissuefem::solid
                     .energy_density(F, fibres.at(cell->active_cell_index(), q))
                   * JxW;
       },
-      materials.mean_dilatation_formulation());
+      &materials);
     return Utilities::MPI::sum(energy, parallel_tools::communicator());
   }
 
@@ -106,7 +118,7 @@ namespace tissuefem::solid
                        : std::sqrt(1.5 * scalar_product(deviator, deviator)))
              / n_q;
       },
-      materials.mean_dilatation_formulation());
+      &materials);
   }
 
 

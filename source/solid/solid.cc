@@ -39,6 +39,12 @@ namespace tissuefem::solid
               "Materials/Formulation",
               "'edge length' needs linear simplices (Geometry/Cell type = "
               "simplex or a simplex mesh file, Polynomial degree = 1)");
+    if (materials.nodal_dilatation_formulation())
+      require(discretization.simplex && discretization.fe->degree == 1,
+              "Materials/Formulation",
+              "'nodal dilatation' is the linear simplex's (Geometry/Cell type "
+              "= simplex or a simplex mesh file, Polynomial degree = 1); use "
+              "'mean dilatation' on hexahedra or P2");
     if (materials.mean_dilatation_formulation())
       require(!(discretization.simplex && discretization.fe->degree == 1),
               "Materials/Formulation",
@@ -67,6 +73,12 @@ namespace tissuefem::solid
                                     false,
                                     Utilities::MPI::this_mpi_process(
                                       parallel_tools::communicator()));
+    nodal.reset();
+    if (materials.nodal_dilatation_formulation())
+      {
+        nodal = std::make_unique<NodalDilatation<dim>>(discretization);
+        nodal->add_sparsity(discretization.constraints, sparsity);
+      }
     sparsity.compress();
     jacobian_matrix.reinit(sparsity);
     mass.reset();

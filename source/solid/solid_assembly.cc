@@ -517,6 +517,9 @@ namespace tissuefem::solid
         return;
       }
     const bool edge_length = materials.edge_length_formulation();
+    // The nodal dilatation's elastic part couples patches of cells: it is
+    // added after the cells' loads and inertia.
+    const bool patches = nodal != nullptr;
     const bool neumann
       = request.external && !boundary_conditions.neumann.empty();
     boundary_conditions.set_time(request.time);
@@ -535,11 +538,11 @@ namespace tissuefem::solid
       start_cell(request, c, s, copy);
       const auto &cell     = cache.cells()[c];
       const auto &material = materials.material(cell->material_id());
-      if (request.internal)
+      if (request.internal && !patches)
         cell_deformation(request, material, c, s, copy);
       if (copy.inverted_det <= 0)
         return;
-      const bool   elastic = request.internal && !edge_length;
+      const bool   elastic = request.internal && !edge_length && !patches;
       const double rho     = materials.density(cell->material_id());
       add_point_terms(request, material, c, rho, elastic, s, copy);
       if (elastic && request.jacobian
@@ -576,6 +579,16 @@ namespace tissuefem::solid
                     copier,
                     Scratch<dim>(discretization, neumann),
                     Copy(cache.n_dofs));
+    if (request.internal && patches)
+      for (const auto &cell : nodal->assemble(*request.u,
+                                              materials,
+                                              fibre_field,
+                                              request.jacobian,
+                                              *request.rows,
+                                              request.inhomogeneous,
+                                              jacobian_matrix,
+                                              residual))
+        inverted.push_back(cell);
 
     residual.compress(VectorOperation::add);
     if (request.jacobian)

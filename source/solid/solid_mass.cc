@@ -138,6 +138,8 @@ namespace tissuefem::solid
                                  parallel_tools::communicator());
     double                      energy = 0;
     std::vector<Tensor<2, dim>> F(n_q);
+    const std::vector<double>   theta
+      = nodal ? nodal->dilatations(ghosted) : std::vector<double>();
     for (unsigned int c = 0; c < cache.cells().size(); ++c)
       {
         const auto &cell     = cache.cells()[c];
@@ -156,6 +158,22 @@ namespace tissuefem::solid
                     for (unsigned int b = 0; b < dim; ++b)
                       F[q][a][b] += u_ka * g[b];
                   }
+              }
+          }
+        if (nodal)
+          {
+            // No Fbar where J and Jbar differ in sign: inadmissible.
+            const double t       = theta[cell->active_cell_index()];
+            bool         defined = true;
+            for (unsigned int q = 0; q < n_q; ++q)
+              if (t / determinant(F[q]) > 0)
+                F[q] = modified_deformation_gradient(F[q], t);
+              else
+                defined = false;
+            if (!defined)
+              {
+                energy = std::numeric_limits<double>::infinity();
+                break;
               }
           }
         if (materials.mean_dilatation_formulation()

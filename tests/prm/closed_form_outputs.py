@@ -69,6 +69,9 @@ P_xx = mu * stretch + (lam * math.log(J) - mu) / stretch
 I1 = stretch ** 2 + 2 * s * s
 W = 0.5 * mu * (I1 - 3) - mu * math.log(J) + 0.5 * lam * math.log(J) ** 2
 write("uniaxial_stretch_neo_hookean", 1, [P_xx, 0, 0], W)
+# The same stretch on P1 tetrahedra (2 x 2 x 2 cubes, 5 tetrahedra each)
+# with the nodal dilatation: homogeneous, so Fbar = F.
+write("uniaxial_stretch_nodal_dilatation", 1, [P_xx, 0, 0], W, cells=40)
 
 # Simple shear F = I + g e_x (x) e_y, g = 0.3; reaction on y = 1 is P e_y.
 g = 0.3

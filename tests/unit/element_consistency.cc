@@ -1,7 +1,9 @@
 // The residual is the gradient of implicit_energy() and the Jacobian the
 // derivative of the residual, for the formulations whose elements couple
 // quadrature points or need a custom tangent: the mean dilatation (F-bar)
-// element on Q1 and Q2 quadrilaterals, Q1 hexahedra and P2 tetrahedra, and
+// element on Q1 and Q2 quadrilaterals, Q1 hexahedra and P2 tetrahedra, the
+// nodal dilatation element on P1 triangles and tetrahedra (whose cells
+// couple through the patches around their vertices), and
 // the invertible neo-Hookean model on states with inverted and collapsed
 // cells. Checked against central differences along random directions (the
 // energy line search relies on the first, Newton's quadratic convergence on
@@ -152,6 +154,19 @@ main(int argc, char **argv)
            false);
   check<3>("F-bar P2 tetrahedra",
            scene(3, "simplex", 2, "St Venant-Kirchhoff", md, "none"),
+           0.05,
+           false);
+  const std::string nodal = "nodal dilatation";
+  check<2>("nodal dilatation P1 triangles",
+           scene(2, "simplex", 1, "neo-Hookean", nodal, "none"),
+           0.1,
+           false);
+  check<3>("nodal dilatation P1 tetrahedra",
+           scene(3, "simplex", 1, "robust neo-Hookean", nodal, "none"),
+           0.1,
+           false);
+  check<3>("nodal dilatation P1 tetrahedra, St Venant-Kirchhoff",
+           scene(3, "simplex", 1, "St Venant-Kirchhoff", nodal, "none"),
            0.05,
            false);
   check<2>("invertible neo-Hookean, inverted, 2D",

@@ -33,6 +33,7 @@ namespace tissuefem::materials
     std::string                   fibre_direction;
     bool                          edge_length_formulation;
     bool                          mean_dilatation_formulation;
+    bool                          nodal_dilatation_formulation;
     bool                          project_tangent;
   };
 
@@ -86,6 +87,14 @@ namespace tissuefem::materials
       return mean_dilatation;
     }
 
+    /// Whether linear simplices use the nodally averaged dilatation
+    /// (solid/nodal_dilatation.h).
+    bool
+    nodal_dilatation_formulation() const
+    {
+      return nodal_dilatation;
+    }
+
     /// Whether tangents are projected to positive definite ones
     /// (tangent_projection.h).
     bool
@@ -107,6 +116,7 @@ namespace tissuefem::materials
     std::unique_ptr<FunctionParser<dim>> fibre;
     bool                                 edge_length;
     bool                                 mean_dilatation;
+    bool                                 nodal_dilatation;
     bool                                 project;
 
     const Entry &

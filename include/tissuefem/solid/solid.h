@@ -10,6 +10,7 @@
 #include <tissuefem/solid/discretization.h>
 #include <tissuefem/solid/fibre_field.h>
 #include <tissuefem/solid/linear_simplex_kernel.h>
+#include <tissuefem/solid/nodal_dilatation.h>
 #include <tissuefem/solid/operators.h>
 
 #include <functional>
@@ -375,8 +376,11 @@ namespace tissuefem::solid
     CellCache<dim>                     cache;
     /// The lean kernel, where it applies to the mesh (else null).
     std::unique_ptr<LinearSimplexKernel<dim>> lean;
-    FibreField<dim>                           fibre_field;
-    AffineConstraints<double>                 no_constraints;
+    /// The nodally averaged dilatation's patches ('Formulation = nodal
+    /// dilatation'), rebuilt with the mesh.
+    std::unique_ptr<NodalDilatation<dim>> nodal;
+    FibreField<dim>                       fibre_field;
+    AffineConstraints<double>             no_constraints;
     /// Constraints with the Dirichlet increment (implicit_residual_lifting).
     AffineConstraints<double>                         lifting_constraints;
     MatrixType                                        jacobian_matrix;
