@@ -1,7 +1,6 @@
-#include <deal.II/base/mpi.h>
-
 #include <tissuefem/base/input_error.h>
 #include <tissuefem/base/moved_entries.h>
+#include <tissuefem/base/parallel.h>
 #include <tissuefem/base/parameter_tools.h>
 
 #include <iostream>
@@ -111,8 +110,7 @@ namespace tissuefem::moved_entries
         at(prm, move.new_path, [&](const std::string &name) {
           prm.set(name, old_value);
         });
-        if (noticed.insert(old_path).second
-            && Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0)
+        if (noticed.insert(old_path).second && parallel_tools::is_root())
           std::cerr << "tissuefem: notice: '" << old_path << "' is now '"
                     << move.new_path << "'; the old name is still read."
                     << std::endl;

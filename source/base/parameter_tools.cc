@@ -1,6 +1,7 @@
 #include <deal.II/base/utilities.h>
 #include <deal.II/lac/vector.h>
 
+#include <tissuefem/base/cerr_capture.h>
 #include <tissuefem/base/input_error.h>
 #include <tissuefem/base/parameter_tools.h>
 
@@ -131,8 +132,7 @@ namespace tissuefem
     // deal.II's muparser wrapper prints its own multi-line report of a
     // syntax error to std::cerr; silence it, since the error is reported
     // (on one line, naming the parameter) by the exception below.
-    std::ostringstream muted;
-    std::streambuf    *cerr_buffer = std::cerr.rdbuf(muted.rdbuf());
+    const CerrCapture muted;
     try
       {
         function->initialize(expression_variables(dim),
@@ -143,11 +143,9 @@ namespace tissuefem
         // error surface here, where we can still name the parameter.
         Vector<double> values(n_components);
         function->vector_value(Point<dim>(), values);
-        std::cerr.rdbuf(cerr_buffer);
       }
     catch (const ExceptionBase &e)
       {
-        std::cerr.rdbuf(cerr_buffer);
         throw InputError("Parameter '" + parameter
                          + "': cannot parse expression '" + expressions
                          + "': " + one_line_message(e));

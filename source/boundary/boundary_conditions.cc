@@ -105,11 +105,10 @@ namespace tissuefem::boundary
       return ComponentMask(mask);
     }
 
-    /// Whether an expression uses the variable t (as a whole identifier,
-    /// not inside 'sqrt' or 'atan'); constants and functions of x, y, z
-    /// alone do not.
+    /// Whether an expression uses the variable @p name as a whole
+    /// identifier ('t' is not inside 'sqrt' or 'atan').
     bool
-    names_time(const std::string &expression)
+    names_variable(const std::string &expression, const std::string &name)
     {
       std::string identifier;
       for (const char c : expression + ' ')
@@ -117,11 +116,19 @@ namespace tissuefem::boundary
           identifier += c;
         else
           {
-            if (identifier == "t")
+            if (identifier == name)
               return true;
             identifier.clear();
           }
       return false;
+    }
+
+    /// Whether an expression uses the time t; constants and functions of
+    /// x, y, z alone do not.
+    bool
+    names_time(const std::string &expression)
+    {
+      return names_variable(expression, "t");
     }
   } // namespace
 
@@ -161,17 +168,10 @@ namespace tissuefem::boundary
                       || names_time(parameters.load_factor);
     const std::string load_factor_name = "Boundary conditions/Load factor";
     for (const char *space : {"x", "y", "z"})
-      {
-        std::string rest = parameters.load_factor;
-        for (char &c : rest)
-          if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_')
-            c = ' ';
-        require((" " + rest + " ").find(std::string(" ") + space + " ")
-                  == std::string::npos,
-                load_factor_name,
-                "must be a function of t only; '" + parameters.load_factor
-                  + "' names " + space);
-      }
+      require(!names_variable(parameters.load_factor, space),
+              load_factor_name,
+              "must be a function of t only; '" + parameters.load_factor
+                + "' names " + space);
     load_factor_function
       = make_function<dim>(parameters.load_factor, 1, load_factor_name);
     load_factor = load_factor_at(0);

@@ -39,8 +39,19 @@ namespace tissuefem::solid
                         const unsigned int           n_q)
   {
     const double theta = mean_dilatation(F, JxW, n_q);
-    if (theta <= 0)
-      return false;
+    return theta > 0 && apply_dilatation(F, n_q, theta);
+  }
+
+
+  template <int dim>
+  bool
+  apply_dilatation(std::vector<Tensor<2, dim>> &F,
+                   const unsigned int           n_q,
+                   const double                 theta)
+  {
+    for (unsigned int q = 0; q < n_q; ++q)
+      if (!(theta / determinant(F[q]) > 0))
+        return false;
     for (unsigned int q = 0; q < n_q; ++q)
       F[q] = modified_deformation_gradient(F[q], theta);
     return true;
@@ -146,6 +157,9 @@ namespace tissuefem::solid
   template bool apply_mean_dilatation<dim>(std::vector<Tensor<2, dim>> &,   \
                                            const double *,                  \
                                            const unsigned int);             \
+  template bool apply_dilatation<dim>(std::vector<Tensor<2, dim>> &,        \
+                                      const unsigned int,                   \
+                                      const double);                        \
   template void mean_dilatation_stress<dim>(const Tensor<2, dim> &,         \
                                             const double,                   \
                                             const Tensor<2, dim> &,         \

@@ -19,6 +19,7 @@ namespace tissuefem::solid
     const auto &dof_handler = discretization.dof_handler;
     const auto &fe          = *discretization.fe;
     const auto &mesh        = dof_handler.get_triangulation();
+    n_active_cells          = mesh.n_active_cells();
 
     std::map<unsigned int, std::vector<unsigned int>> around;
     std::vector<bool> needed(mesh.n_vertices(), false);
@@ -163,19 +164,23 @@ namespace tissuefem::solid
     std::vector<double> J(cells.size());
     for (unsigned int g = 0; g < cells.size(); ++g)
       J[g] = determinant(deformation_gradient(cells[g], u));
-    unsigned int n_active = 0;
-    for (const Cell &cell : cells)
-      n_active = std::max(n_active, cell.active_index + 1);
-    std::vector<double> result(n_active,
+    std::vector<double> result(n_active_cells,
                                std::numeric_limits<double>::quiet_NaN());
     for (const Patch &patch : patches)
-      {
-        double theta = 0;
-        for (unsigned int m = 0; m < patch.members.size(); ++m)
-          theta += patch.weights[m] * J[patch.members[m]];
-        result[cells[patch.cell].active_index] = theta;
-      }
+      result[cells[patch.cell].active_index] = dilatation(patch, J);
     return result;
+  }
+
+
+  template <int dim>
+  double
+  NodalDilatation<dim>::dilatation(const Patch               &patch,
+                                   const std::vector<double> &J) const
+  {
+    double theta = 0;
+    for (unsigned int m = 0; m < patch.members.size(); ++m)
+      theta += patch.weights[m] * J[patch.members[m]];
+    return theta;
   }
 
 
@@ -223,10 +228,8 @@ namespace tissuefem::solid
       const Cell  &cell     = cells[patch.cell];
       const auto  &material = materials.material(cell.material_id);
       const double J_e      = J[patch.cell];
-      double       theta    = 0;
-      for (unsigned int m = 0; m < patch.members.size(); ++m)
-        theta += patch.weights[m] * J[patch.members[m]];
-      copy.defined = theta / J_e > 0
+      const double theta    = dilatation(patch, J);
+      copy.defined          = theta / J_e > 0
                      && (material.admits_inversion() || (J_e > 0 && theta > 0));
       if (!copy.defined)
         {

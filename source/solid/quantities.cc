@@ -49,10 +49,7 @@ namespace tissuefem::solid
             if (f_bar)
               apply_mean_dilatation(F, JxW.data(), F.size());
             if (!theta.empty())
-              for (auto &F_q : F)
-                if (theta[cell->active_cell_index()] / determinant(F_q) > 0)
-                  F_q = modified_deformation_gradient(
-                    F_q, theta[cell->active_cell_index()]);
+              apply_dilatation(F, F.size(), theta[cell->active_cell_index()]);
             for (const unsigned int q : fe_values.quadrature_point_indices())
               f(cell, q, F[q], JxW[q]);
           }

@@ -160,21 +160,12 @@ namespace tissuefem::solid
                   }
               }
           }
-        if (nodal)
+        // No Fbar where J and Jbar differ in sign: inadmissible.
+        if (nodal
+            && !apply_dilatation(F, n_q, theta[cell->active_cell_index()]))
           {
-            // No Fbar where J and Jbar differ in sign: inadmissible.
-            const double t       = theta[cell->active_cell_index()];
-            bool         defined = true;
-            for (unsigned int q = 0; q < n_q; ++q)
-              if (t / determinant(F[q]) > 0)
-                F[q] = modified_deformation_gradient(F[q], t);
-              else
-                defined = false;
-            if (!defined)
-              {
-                energy = std::numeric_limits<double>::infinity();
-                break;
-              }
+            energy = std::numeric_limits<double>::infinity();
+            break;
           }
         if (materials.mean_dilatation_formulation()
             && !apply_mean_dilatation(F, cache.JxW(c), n_q))

@@ -2,6 +2,7 @@
 #include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/trilinos_precondition.h>
 
+#include <tissuefem/base/cerr_capture.h>
 #include <tissuefem/base/input_error.h>
 #include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/base/timing.h>
@@ -18,48 +19,24 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <iostream>
 #include <sstream>
 
 namespace tissuefem::solvers
 {
   namespace
   {
-    /**
-     * Keeps what Amesos writes to std::cerr while it lives (Amesos_Mumps
-     * reports a failed factorization there in several lines); the failure
-     * then reaches the user as tissuefem's one-line SolverError, with the
-     * code that says why.
-     */
-    class CerrCapture
+    /// The integer after "INFOG(1) = " in what Amesos_Mumps wrote on a
+    /// failure (captured: @p text), or "".
+    std::string
+    mumps_infog1(const std::string &text)
     {
-    public:
-      CerrCapture()
-          : previous(std::cerr.rdbuf(text.rdbuf()))
-      {
-      }
-      ~CerrCapture()
-      {
-        std::cerr.rdbuf(previous);
-      }
-
-      /// The integer after "INFOG(1) = " in what was written, or "".
-      std::string
-      mumps_infog1() const
-      {
-        const std::string all = text.str();
-        const auto        at  = all.find("INFOG(1) = ");
-        if (at == std::string::npos)
-          return "";
-        std::istringstream value(all.substr(at + 11));
-        long               code = 0;
-        return value >> code ? std::to_string(code) : "";
-      }
-
-    private:
-      std::ostringstream text;
-      std::streambuf    *previous;
-    };
+      const auto at = text.find("INFOG(1) = ");
+      if (at == std::string::npos)
+        return "";
+      std::istringstream value(text.substr(at + 11));
+      long               code = 0;
+      return value >> code ? std::to_string(code) : "";
+    }
 
     /// Why Amesos' numeric factorization failed, from MUMPS' INFOG(1).
     std::string
@@ -259,7 +236,7 @@ namespace tissuefem::solvers
             list.sublist("mumps").set(stream, -1);
           list.sublist("mumps").set("ICNTL(4)", 0);
           amesos->SetParameters(list);
-          CerrCapture capture;
+          const CerrCapture capture;
           if (amesos->SymbolicFactorization() != 0)
             throw SolverError("symbolic factorization failed (" + type + ")");
           ++stats.setups;
@@ -271,14 +248,14 @@ namespace tissuefem::solvers
       if (refactorize || !factorized)
         {
           factorized = false;
-          CerrCapture capture;
+          const CerrCapture capture;
           if (amesos->NumericFactorization() != 0)
             throw SolverError(
-              factorization_failure(type, capture.mumps_infog1()));
+              factorization_failure(type, mumps_infog1(capture.text())));
           factorized = true;
           ++stats.factorizations;
         }
-      CerrCapture capture;
+      const CerrCapture capture;
       if (amesos->Solve() != 0)
         throw SolverError("triangular solves failed (" + type + ")");
     }

@@ -56,6 +56,17 @@ namespace tissuefem::solid
   modified_deformation_gradient(const Tensor<2, dim> &F, const double theta);
 
   /**
+   * Replaces the deformation gradients of one cell's @p n_q points by their
+   * Fbar for the dilatation @p theta; returns false (leaving them) where
+   * Fbar is not defined (theta / det F <= 0 at some point).
+   */
+  template <int dim>
+  bool
+  apply_dilatation(std::vector<Tensor<2, dim>> &F,
+                   const unsigned int           n_q,
+                   const double                 theta);
+
+  /**
    * Replaces the deformation gradients of one cell by their Fbar; returns
    * false (leaving them) if some det F <= 0.
    */

@@ -134,10 +134,16 @@ namespace tissuefem::solid
                 const Vector<double>              &w,
                 FullMatrix<double>                &K) const;
 
+    /// Jbar_e = sum_g c_g J_g of a patch, for the cells' J.
+    double
+    dilatation(const Patch &patch, const std::vector<double> &J) const;
+
     std::vector<Cell>  cells;
     std::vector<Patch> patches;
     /// Reference quadrature weights, normalized to sum 1, for the fibre
     /// directions at the points (F is constant per cell).
     std::vector<double> weights;
+    /// Of the mesh: the size of dilatations()' result.
+    unsigned int n_active_cells = 0;
   };
 } // namespace tissuefem::solid
