@@ -63,7 +63,7 @@ namespace tissuefem::time
     // first iterations ('Jacobian reuse') when the lifting moved the body
     // little (below 1 % of its size: a smooth step). After a larger motion
     // (a crushed body springing back) it may lead modified Newton to
-    // another equilibrium (measured: tests/unit/inversion_recovery), so
+    // another equilibrium (measured: tests/unit/inversion_recovery_*), so
     // Newton starts with a fresh Jacobian there.
     double motion = -1;
     if (context->newton.lift_boundary_increments)

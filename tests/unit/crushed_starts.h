@@ -1,0 +1,185 @@
+// Crushed and scrambled starts of an unconstrained block of the invertible
+// neo-Hookean model, shared by inversion_recovery_hexahedra and
+// inversion_recovery_tetrahedra (two programs, so that ctest runs them in
+// parallel). Backward Euler from rest, no loads and no constraints: the
+// exact answer is the rest shape up to a rigid motion, so the measure is
+// the largest nodal distance from the best rigidly moved rest shape
+// (rotation with det +1: a mirror image does not count), which must fall
+// below 1e-3 (the block is 1 long) by t = 3.
+//
+// The starts, on 4 x 4 x 4 cells (cell size 0.25):
+// - collapsed exactly to a plane, a line and a point;
+// - the same, with every node then moved by up to 0.003 (1 % of a cell)
+//   in each direction, three seeds each: nodes all within 1 % of the
+//   centre, of the middle plane or of the middle line;
+// - random scrambles of up to two cell sizes (0.5) in each direction,
+//   three seeds;
+// - smooth scrambles (products of sines of wavelength about two block
+//   sizes) of up to two cell sizes, three seeds.
+// The "random" fields are sines of high frequency: deterministic, and
+// unrelated from node to node; the seed shifts their phases.
+#pragma once
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <tissuefem/base/application.h>
+#include <tissuefem/solid/quantities.h>
+
+#include <cmath>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "../tests.h"
+#include "solid_scene.h"
+
+namespace tissuefem_tests
+{
+  /// Component c of a node-to-node random field in [-1, 1].
+  inline std::string
+  random_field(const unsigned int seed, const unsigned int c)
+  {
+    static const char *const waves[3]
+      = {"sin(9173.1*x + 5417.3*y + 3319.7*z + ",
+         "sin(7351.9*x + 8111.3*y + 2273.1*z + ",
+         "sin(4409.7*x + 6073.9*y + 9931.3*z + "};
+    return std::string(waves[c]) + std::to_string(1.37 * (c + 1) * seed) + ")";
+  }
+
+
+  /// Component c of a smooth field in [-1, 1].
+  inline std::string
+  smooth_field(const unsigned int seed, const unsigned int c)
+  {
+    const std::string phase = std::to_string(0.9 * seed + c);
+    return "sin(3.1*x + 2.3*y + 1.7*z + " + phase + ")*cos(1.9*x - 2.9*y + "
+           + "2.2*z + " + std::to_string(1.3 * seed + 2 * c) + ")";
+  }
+
+
+  /// The starts, as (name, 'Initial displacement').
+  inline std::vector<std::pair<std::string, std::string>>
+  crushed_starts()
+  {
+    const std::string collapse[3][3] = {{"0", "0", "0.5 - z"},
+                                        {"0.5 - x", "0.5 - y", "0"},
+                                        {"0.5 - x", "0.5 - y", "0.5 - z"}};
+    const std::string shapes[3]      = {"plane", "line", "point"};
+    std::vector<std::pair<std::string, std::string>> starts;
+    const auto join = [](const std::string(&c)[3]) {
+      return c[0] + "; " + c[1] + "; " + c[2];
+    };
+    for (unsigned int k = 0; k < 3; ++k)
+      starts.emplace_back("collapsed to a " + shapes[k], join(collapse[k]));
+    for (unsigned int k = 0; k < 3; ++k)
+      for (unsigned int seed = 1; seed <= 3; ++seed)
+        {
+          std::string d[3];
+          for (unsigned int c = 0; c < 3; ++c)
+            d[c] = (collapse[k][c] == "0" ? ""
+                                          : "0.99*(" + collapse[k][c] + ") + ")
+                   + "0.003*" + random_field(seed, c);
+          starts.emplace_back("nearly a " + shapes[k] + ", seed "
+                                + std::to_string(seed),
+                              join(d));
+        }
+    for (unsigned int seed = 1; seed <= 3; ++seed)
+      {
+        std::string r[3], s[3];
+        for (unsigned int c = 0; c < 3; ++c)
+          {
+            r[c] = "0.5*" + random_field(seed, c);
+            s[c] = "0.5*" + smooth_field(seed, c);
+          }
+        starts.emplace_back("random scramble, seed " + std::to_string(seed),
+                            join(r));
+        starts.emplace_back("smooth scramble, seed " + std::to_string(seed),
+                            join(s));
+      }
+    return starts;
+  }
+
+
+  /// Runs the block from @p start to t = 3; the distance from the rest
+  /// shape at the end.
+  inline double
+  recover(const std::string &cells, const std::string &start)
+  {
+    ParameterHandler prm;
+    tissuefem::declare_all_parameters(prm);
+    prm.parse_input_from_string(R"(
+      set Dimension = 3
+      subsection Geometry
+        set Cell type    = )" + cells
+                                + R"(
+        set Subdivisions = 4, 4, 4
+      end
+      subsection Materials
+        set Model           = invertible neo-Hookean
+        set Young's modulus = 1000
+        set Poisson's ratio = 0.3
+        set Density         = 1
+      end
+      subsection Boundary conditions
+        set Initial displacement = )"
+                                + start + R"(
+      end
+      subsection Time integration
+        set Integrator = backward Euler
+        set Time step  = 0.02
+      end
+    )");
+    SolidScene<3> scene(prm);
+    auto         &solid      = *scene.solid;
+    time::Context context    = scene.context();
+    auto          integrator = scene.integrator(prm);
+    time::State   state;
+    solid.initial_state(state.u, state.v);
+    integrator->initialize(context, state);
+    while (state.time < 3 - 1e-9)
+      integrator->advance(state, 3.);
+    return solid::distance_from_rest_shape(*scene.discretization, state.u);
+  }
+
+
+  /// Every start on @p cells: one line each. Starts for which
+  /// @p must_recover is false need only complete (every step converges,
+  /// with step halvings); their end state is not compared, as which
+  /// tangled equilibrium a run settles in depends on round-off.
+  template <typename Predicate>
+  inline void
+  check_crushed_starts(const std::string &cells, const Predicate &must_recover)
+  {
+    for (const auto &[name, start] : crushed_starts())
+      {
+        double distance = 1e300;
+        // The run's screen output (step halvings) stays out of the
+        // compared output.
+        std::ostringstream muted;
+        auto              *screen = std::cout.rdbuf(muted.rdbuf());
+        std::string        error;
+        try
+          {
+            distance = recover(cells, start);
+          }
+        catch (const std::exception &e)
+          {
+            error = e.what();
+          }
+        std::cout.rdbuf(screen);
+        if (!error.empty())
+          std::cout << "  " << error << '\n';
+        if (must_recover(name))
+          check_small(distance,
+                      1e-3,
+                      cells + ", " + name + ": distance from the rest shape");
+        else
+          check(error.empty() && std::isfinite(distance),
+                cells + ", " + name + ": every step converges",
+                "");
+      }
+  }
+} // namespace tissuefem_tests
