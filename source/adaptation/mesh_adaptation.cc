@@ -7,6 +7,8 @@
 #include <tissuefem/adaptation/mesh_adaptation.h>
 #include <tissuefem/base/input_error.h>
 
+#include <algorithm>
+
 namespace tissuefem::adaptation
 {
   void
@@ -57,6 +59,19 @@ namespace tissuefem::adaptation
                       Patterns::Integer(0),
                       "Stop refining when the mesh would exceed about this "
                       "many cells; 0: no limit.");
+    prm.declare_entry(
+      "Dilatation release steps",
+      "1",
+      Patterns::Double(0, 1000),
+      "With 'Materials/Formulation = mean dilatation': each cell of a "
+      "changed mesh starts with the volume change (cell mean of det F) of "
+      "the cell it came from, and its own is phased in linearly over this "
+      "many times 'Time integration/Time step' of simulated time, so that "
+      "refining a nearly incompressible body does not create pressure jumps "
+      "of the bulk modulus times the variation of det F inside the old cell "
+      "(which a halved step would face undiminished). Only the implicit "
+      "integrators' equations see the carried part; outputs show the "
+      "material itself. 0: a new cell has its own volume change at once.");
     prm.leave_subsection();
   }
 
@@ -65,13 +80,14 @@ namespace tissuefem::adaptation
   MeshRefinementParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Mesh refinement");
-    indicator        = prm.get("Indicator");
-    strategy         = prm.get("Strategy");
-    refine_fraction  = prm.get_double("Refine fraction");
-    coarsen_fraction = prm.get_double("Coarsen fraction");
-    interval         = prm.get_integer("Interval");
-    max_levels       = prm.get_integer("Maximum levels");
-    max_cells        = prm.get_integer("Maximum cells");
+    indicator                = prm.get("Indicator");
+    strategy                 = prm.get("Strategy");
+    refine_fraction          = prm.get_double("Refine fraction");
+    coarsen_fraction         = prm.get_double("Coarsen fraction");
+    interval                 = prm.get_integer("Interval");
+    max_levels               = prm.get_integer("Maximum levels");
+    max_cells                = prm.get_integer("Maximum cells");
+    dilatation_release_steps = prm.get_double("Dilatation release steps");
     prm.leave_subsection();
     require(refine_fraction + coarsen_fraction <= 1,
             "Mesh refinement/Coarsen fraction",
@@ -104,6 +120,7 @@ namespace tissuefem::adaptation
   bool
   MeshAdaptation<dim>::adapt(const VectorType                &u,
                              const double                     time,
+                             const double                     time_step,
                              const std::vector<VectorType *> &vectors)
   {
     const auto    &discretization = solid.get_discretization();
@@ -161,6 +178,18 @@ namespace tissuefem::adaptation
         discretization.hanging_node_constraints.distribute(*vectors[k]);
         old_values[k] = *vectors[k];
       }
+    const auto u_index = std::find(vectors.begin(), vectors.end(), &u);
+    AssertThrow(u_index != vectors.end(),
+                ExcMessage("adapt(): u must be among the vectors"));
+    const unsigned int u_k = u_index - vectors.begin();
+    const bool carry       = solid.get_materials().mean_dilatation_formulation()
+                       && parameters.dilatation_release_steps > 0;
+    if (carry)
+      solid.dilatation_carry().record(dof_handler,
+                                      *discretization.mapping,
+                                      discretization.cell_quadrature,
+                                      old_values[u_k],
+                                      time);
     SolutionTransfer<dim, Vector<double>> transfer(dof_handler);
     transfer.prepare_for_coarsening_and_refinement(old_values);
     triangulation.execute_coarsening_and_refinement();
@@ -180,6 +209,17 @@ namespace tissuefem::adaptation
               vectors[k]->compress(VectorOperation::insert);
               discretization.hanging_node_constraints.distribute(*vectors[k]);
             }
+          // Before anyone else assembles on the new mesh.
+          Vector<double> u_new;
+          if (carry)
+            u_new = *vectors[u_k];
+          solid.dilatation_carry().finish(
+            dof_handler,
+            *discretization.mapping,
+            discretization.cell_quadrature,
+            u_new,
+            time,
+            carry ? parameters.dilatation_release_steps * time_step : 0.);
         },
         boost::signals2::at_front);
     solid.setup();

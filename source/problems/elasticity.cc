@@ -367,7 +367,8 @@ namespace tissuefem::problems
       return;
     // The solid announces the change to the solver, the integrator, the
     // state's boundary values and the postprocessors.
-    if (adaptation->adapt(state.u, state.time, state_vectors(state)))
+    if (adaptation->adapt(
+          state.u, state.time, time_parameters.time_step, state_vectors(state)))
       parallel_tools::screen()
         << "  mesh adapted: " << scene->triangulation.n_active_cells()
         << " cells, " << scene->solid->n_dofs() << " unknowns" << std::endl;

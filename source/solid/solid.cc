@@ -239,6 +239,7 @@ namespace tissuefem::solid
       }
     request.mass_jacobian_coefficient = mass_coefficient;
     request.time                      = time;
+    request.carry                     = true;
     return request;
   }
 

@@ -109,6 +109,7 @@ namespace tissuefem::solid
                                    const unsigned int               c,
                                    const unsigned int               cell_index,
                                    const bool                       jacobian,
+                                   const double                     carried,
                                    ScratchType                     &s,
                                    CopyType                        &copy) const
   {
@@ -120,14 +121,17 @@ namespace tissuefem::solid
         for (unsigned int k = 0; k < n_scalar; ++k)
           s.F[q] += outer_product(s.U[k], cache.gradient(c, q, k));
       }
-    const double theta = solid::mean_dilatation(s.F, JxW, n_q);
-    if (theta <= 0)
+    const double mean = solid::mean_dilatation(s.F, JxW, n_q);
+    if (mean <= 0)
       {
-        copy.inverted_det = theta;
+        copy.inverted_det = mean;
         return;
       }
-    const auto method = materials.tangent_method();
-    double     volume = 0, Phi_theta = 0;
+    // A carried dilatation scales theta by a constant: dtheta/du (b) and
+    // the pressure-like term scale with it, Theta and C do not.
+    const double theta  = carried * mean;
+    const auto   method = materials.tangent_method();
+    double       volume = 0, Phi_theta = 0;
     s.Theta = 0;
     for (unsigned int k = 0; k < n_scalar; ++k)
       s.b[k] = s.C[k] = Tensor<1, dim>();
@@ -166,10 +170,10 @@ namespace tissuefem::solid
         volume += JxW[q];
       }
     for (unsigned int k = 0; k < n_scalar; ++k)
-      s.b[k] /= volume;
+      s.b[k] *= carried / volume;
     // The pressure-like term Phi_theta/V couples every point through
     // theta: its first derivative is cof F_q, its second dcof/dF.
-    const double pressure = Phi_theta / volume;
+    const double pressure = carried * Phi_theta / volume;
     for (unsigned int q = 0; q < n_q; ++q)
       {
         s.P[q] += pressure * cofactor(s.F[q]);
@@ -223,8 +227,15 @@ namespace tissuefem::solid
   {
     if (materials.mean_dilatation_formulation())
       {
-        mean_dilatation_cell(
-          material, c, copy.cell_index, request.jacobian, s, copy);
+        mean_dilatation_cell(material,
+                             c,
+                             copy.cell_index,
+                             request.jacobian,
+                             request.carry
+                               ? carry.factor(copy.cell_index, request.time)
+                               : 1.,
+                             s,
+                             copy);
         return;
       }
     // F at every point first: an inverted point (where the model cannot

@@ -98,7 +98,7 @@ namespace tissuefem::solid
                               const double      mass_coefficient,
                               const double      time)
   {
-    double energy = stored_energy(u);
+    double energy = stored_energy_with(u, &time);
     if (!std::isfinite(energy))
       return energy;
     // Dead loads: the external work is f_ext . u, with hanging-node values
@@ -123,6 +123,15 @@ namespace tissuefem::solid
   template <int dim>
   double
   Solid<dim>::stored_energy(const VectorType &u) const
+  {
+    return stored_energy_with(u, nullptr);
+  }
+
+
+  template <int dim>
+  double
+  Solid<dim>::stored_energy_with(const VectorType &u,
+                                 const double     *carry_time) const
   {
     // From the cell cache, as assembly does: no FEValues per cell, so that
     // the per-step energy of explicit runs costs less than a force
@@ -167,8 +176,15 @@ namespace tissuefem::solid
             energy = std::numeric_limits<double>::infinity();
             break;
           }
+        const double cell_theta = materials.mean_dilatation_formulation()
+                                    ? mean_dilatation(F, cache.JxW(c), n_q)
+                                    : 1.;
+        const double carried
+          = carry_time ? carry.factor(cell->active_cell_index(), *carry_time)
+                       : 1.;
         if (materials.mean_dilatation_formulation()
-            && !apply_mean_dilatation(F, cache.JxW(c), n_q))
+            && !(cell_theta > 0
+                 && apply_dilatation(F, n_q, carried * cell_theta)))
           {
             // No Fbar where a cell is inverted: an inadmissible state.
             energy = std::numeric_limits<double>::infinity();
@@ -284,17 +300,19 @@ namespace tissuefem::solid
 
 
   // The class is instantiated in solid.cc; these members here.
-#define TISSUEFEM_INSTANTIATE(dim)                                     \
-  template const MatrixType &Solid<dim>::mass_matrix();                \
-  template const VectorType &Solid<dim>::lumped_mass();                \
-  template double Solid<dim>::stored_energy(const VectorType &) const; \
-  template double Solid<dim>::kinetic_energy(const VectorType &);      \
-  template double Solid<dim>::implicit_energy(const VectorType &,      \
-                                              const VectorType &,      \
-                                              const double,            \
-                                              const double);           \
-  template const std::vector<std::vector<types::global_dof_index>>     \
-               &Solid<dim>::column_groups();                           \
+#define TISSUEFEM_INSTANTIATE(dim)                                      \
+  template const MatrixType &Solid<dim>::mass_matrix();                 \
+  template const VectorType &Solid<dim>::lumped_mass();                 \
+  template double Solid<dim>::stored_energy(const VectorType &) const;  \
+  template double Solid<dim>::stored_energy_with(const VectorType &,    \
+                                                 const double *) const; \
+  template double Solid<dim>::kinetic_energy(const VectorType &);       \
+  template double Solid<dim>::implicit_energy(const VectorType &,       \
+                                              const VectorType &,       \
+                                              const double,             \
+                                              const double);            \
+  template const std::vector<std::vector<types::global_dof_index>>      \
+               &Solid<dim>::column_groups();                            \
   template bool Solid<dim>::has_hanging_nodes() const;
   TISSUEFEM_INSTANTIATE(1)
   TISSUEFEM_INSTANTIATE(2)

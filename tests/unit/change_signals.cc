@@ -112,7 +112,7 @@ main(int argc, char **argv)
         seen_size = u.size();
         seen_max  = u.linfty_norm();
       });
-  const bool adapted = adaptation.adapt(u, 0., {&u});
+  const bool adapted = adaptation.adapt(u, 0., 0.1, {&u});
   tissuefem_tests::check(adapted && solid.n_dofs() > old_dofs
                            && events.size() == 2 && seen_size == solid.n_dofs()
                            && std::abs(seen_max - 0.1) < 1e-14,

@@ -30,6 +30,9 @@ namespace tissuefem::adaptation
     unsigned int interval;
     unsigned int max_levels;
     unsigned int max_cells;
+    /// Time steps over which a mean dilatation element's carried cell
+    /// dilatations are released after a change (0: not carried).
+    double dilatation_release_steps;
   };
 
   /**
@@ -68,12 +71,16 @@ namespace tissuefem::adaptation
     /**
      * Marks cells from the indicator of @p u, changes the mesh, sets the
      * solid up on it and interpolates every vector of @p vectors (owned
-     * layout, replaced by vectors on the new mesh). Returns whether the
-     * mesh changed.
+     * layout, replaced by vectors on the new mesh; @p u among them). For
+     * the mean dilatation formulation, the cells' dilatations are carried
+     * to the new mesh and released over 'Dilatation release steps' times
+     * @p time_step (solid/dilatation_carry.h). Returns whether the mesh
+     * changed.
      */
     bool
     adapt(const VectorType                &u,
           const double                     time,
+          const double                     time_step,
           const std::vector<VectorType *> &vectors);
 
   private:

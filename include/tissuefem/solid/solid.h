@@ -7,6 +7,7 @@
 #include <tissuefem/materials/material_set.h>
 #include <tissuefem/solid/cell_cache.h>
 #include <tissuefem/solid/change_signals.h>
+#include <tissuefem/solid/dilatation_carry.h>
 #include <tissuefem/solid/discretization.h>
 #include <tissuefem/solid/fibre_field.h>
 #include <tissuefem/solid/linear_simplex_kernel.h>
@@ -209,6 +210,17 @@ namespace tissuefem::solid
       return fibre_field;
     }
 
+    /// The cell dilatations carried across mesh changes (mean dilatation
+    /// formulation; see dilatation_carry.h), which a mesh adaptation
+    /// records and finishes. They enter the implicit operators
+    /// (implicit_residual, implicit_residual_lifting, implicit_energy)
+    /// only: outputs and the other operators see the material as it is.
+    DilatationCarry<dim> &
+    dilatation_carry()
+    {
+      return carry;
+    }
+
   private:
     /// What one assembly pass computes.
     struct Request
@@ -225,6 +237,8 @@ namespace tissuefem::solid
       bool inhomogeneous = false;
       /// Cells to assemble (all if null), by cache index.
       const std::vector<bool> *cells = nullptr;
+      /// Whether the carried cell dilatations apply (implicit requests).
+      bool carry = false;
     };
 
     /// The reference body's diameter (length_scale()), set by setup().
@@ -283,7 +297,8 @@ namespace tissuefem::solid
 
     /// For the mean dilatation formulation: the effective stresses and
     /// tangents of a cell and its rank-two coupling (mean_dilatation.h),
-    /// into the assembly's scratch; marks the cell inverted if some det F
+    /// into the assembly's scratch, with the cell's dilatation scaled by
+    /// @p carried (DilatationCarry); marks the cell inverted if some det F
     /// <= 0.
     template <typename ScratchType, typename CopyType>
     void
@@ -291,8 +306,14 @@ namespace tissuefem::solid
                          const unsigned int               c,
                          const unsigned int               cell_index,
                          const bool                       jacobian,
+                         const double                     carried,
                          ScratchType                     &s,
                          CopyType                        &copy) const;
+
+    /// The stored energy, with the carried cell dilatations of @p time
+    /// where @p carry_time is given (implicit_energy()).
+    double
+    stored_energy_with(const VectorType &u, const double *carry_time) const;
 
     /// The pieces of assemble()'s cell worker (solid_assembly.cc), in the
     /// order it calls them.
@@ -380,6 +401,7 @@ namespace tissuefem::solid
     /// dilatation'), rebuilt with the mesh.
     std::unique_ptr<NodalDilatation<dim>> nodal;
     FibreField<dim>                       fibre_field;
+    DilatationCarry<dim>                  carry;
     AffineConstraints<double>             no_constraints;
     /// Constraints with the Dirichlet increment (implicit_residual_lifting).
     AffineConstraints<double>                         lifting_constraints;
