@@ -9,7 +9,9 @@
 //    change a refined cell's child starts with its parent's dilatation, a
 //    coarsened cell with the volume-weighted mean of its children's, an
 //    unchanged cell with what it carried (to 1e-12 relative); when the
-//    release is over, every cell has its own (factor 1).
+//    release is over, every cell has its own (factor 1). Mid-release the
+//    residual is the energy's gradient and the Jacobian its derivative
+//    (central differences), as unit/element_consistency checks without.
 // 2. Balance: at the first change the static residual of the interpolated
 //    state with the carried dilatations is below a tenth of the one
 //    without (the refined cells see the old stress field, so only the new
@@ -156,6 +158,45 @@ namespace
   }
 
 
+  /// Mid-release (every factor between 1 and the full ratio), the
+  /// residual is the gradient of the energy and the Jacobian its
+  /// derivative, along a random direction by central differences, as
+  /// element_consistency checks them without a carry.
+  void
+  check_derivatives(solid::Solid<2>  &solid,
+                    const VectorType &u,
+                    const double      time)
+  {
+    tissuefem_tests::Random random(20261125);
+    VectorType              d, r, r_plus, r_minus, Jd, x(u);
+    solid.initialize_vector(d);
+    for (const auto i : d.locally_owned_elements())
+      d[i] = random.uniform();
+    solid.zero_constrained_entries(d);
+    const double h = 1e-6;
+    solid.implicit_residual(u, u, 0., time, r, true);
+    Jd.reinit(u);
+    solid.jacobian().vmult(Jd, d);
+    x.add(h, d);
+    const double e_plus = solid.implicit_energy(x, u, 0., time);
+    solid.implicit_residual(x, u, 0., time, r_plus, false);
+    x.add(-2 * h, d);
+    const double e_minus = solid.implicit_energy(x, u, 0., time);
+    solid.implicit_residual(x, u, 0., time, r_minus, false);
+    const double slope = r * d;
+    tissuefem_tests::check_small(std::abs((e_plus - e_minus) / (2 * h) - slope)
+                                   / std::abs(slope),
+                                 1e-6,
+                                 "mid-release: residual . d against dE/dd");
+    r_plus -= r_minus;
+    r_plus /= 2 * h;
+    r_plus -= Jd;
+    tissuefem_tests::check_small(r_plus.l2_norm() / Jd.l2_norm(),
+                                 1e-6,
+                                 "mid-release: J d against dR/dd");
+  }
+
+
   void
   check_bookkeeping()
   {
@@ -209,6 +250,7 @@ namespace
                                std::to_string(mismatch));
         if (n == 1)
           {
+            check_derivatives(solid, state.u, change + 0.5 * release);
             VectorType residual;
             solid.implicit_residual(
               state.u, state.u, 0., change, residual, false);
