@@ -62,9 +62,12 @@ namespace tissuefem::solvers
       "Start each step with one Newton iteration that takes the change of "
       "the prescribed displacements as inhomogeneous constraints of the "
       "update, so the boundary motion spreads into the body through the "
-      "Jacobian (as FEniCS and FEBio do). 'false' writes the new boundary "
-      "values into the initial guess, which distorts the layer of elements "
-      "next to a moving boundary and can cost several damped iterations.");
+      "Jacobian (as FEniCS and FEBio do). In a quasistatic step the lifted "
+      "guess is kept only if its energy is not above that of the guess with "
+      "the new values written in (a full step of a stiff load increment can "
+      "overshoot). 'false' writes the new boundary values into the initial "
+      "guess, which distorts the layer of elements next to a moving "
+      "boundary and can cost several damped iterations.");
     prm.declare_entry(
       "Jacobian reuse",
       "true",

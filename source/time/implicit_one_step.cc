@@ -47,6 +47,37 @@ namespace tissuefem::time
   }
 
 
+  double
+  ImplicitOneStep::keep_better_guess(const VectorType &guess,
+                                     const double      mass_coefficient,
+                                     const double      time,
+                                     VectorType       &lifted,
+                                     const double      motion)
+  {
+    // The lifting is a full Newton step without a line search: where the
+    // load increment is nonlinear (a nearly incompressible body under a
+    // traction step) it can overshoot, and Newton then starts farther
+    // away than from the guess. Keep the lifted state only if its energy
+    // is not above that of the guess with the new boundary values written
+    // in (infinite where that distorts elements into inversion).
+    auto      &solid = context->solid;
+    VectorType plain(guess);
+    solid.apply_dirichlet_values(time, plain);
+    const double lifted_energy
+      = solid.implicit_energy(lifted, u_tilde, mass_coefficient, time);
+    const double plain_energy
+      = solid.implicit_energy(plain, u_tilde, mass_coefficient, time);
+    if (lifted_energy <= plain_energy || !std::isfinite(plain_energy))
+      return motion;
+    // The Jacobian was assembled at the guess: still current if the
+    // boundary values did not move.
+    VectorType change(plain);
+    change -= guess;
+    lifted = plain;
+    return change.linfty_norm() == 0 ? 0. : -1.;
+  }
+
+
   std::string
   ImplicitOneStep::attempt(const State &state,
                            const double h,
@@ -65,10 +96,12 @@ namespace tissuefem::time
     // (a crushed body springing back) it may lead modified Newton to
     // another equilibrium (measured: tests/unit/inversion_recovery_*), so
     // Newton starts with a fresh Jacobian there.
-    double motion = -1;
+    double     motion = -1;
+    VectorType guess;
     if (context->newton.lift_boundary_increments)
       try
         {
+          guess = next.u;
           // With 'Jacobian reuse across steps', the factorization of an
           // earlier step of the same size serves while the steps converge
           // (Newton makes a fresh one where it contracts too slowly).
@@ -78,6 +111,12 @@ namespace tissuefem::time
           motion
             = lift_boundary_increment(c, t_new, next.u, report, refactorize);
           kept_coefficient = c;
+          // Only without inertia: there the load increment meets the
+          // bare stiffness; with a mass term (real-time dynamic scenes)
+          // the lifting is well conditioned and the check would cost two
+          // energy evaluations a step.
+          if (c == 0)
+            motion = keep_better_guess(guess, c, t_new, next.u, motion);
         }
       catch (const SolverError &)
         {

@@ -120,6 +120,18 @@ namespace tissuefem::time
                             StepReport  &report,
                             const bool   refactorize = true);
 
+    /// After lift_boundary_increment() moved @p guess to @p lifted (by
+    /// @p motion): puts the guess with the new boundary values written in
+    /// back into @p lifted where that has the lower energy. Returns the
+    /// motion to report: @p motion if the lifting is kept, 0 if the guess
+    /// is back and the lifting's Jacobian still belongs to it, -1 if not.
+    double
+    keep_better_guess(const VectorType &guess,
+                      const double      mass_coefficient,
+                      const double      time,
+                      VectorType       &lifted,
+                      const double      motion);
+
     /// u_tilde of the step being attempted (see predict()).
     VectorType u_tilde;
 
