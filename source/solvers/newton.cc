@@ -7,7 +7,9 @@
 #include <chrono>
 #include <cmath>
 #include <iostream>
+#include <iomanip>
 #include <limits>
+#include <sstream>
 
 namespace tissuefem::solvers
 {
@@ -320,9 +322,13 @@ namespace tissuefem::solvers
         }
       if (result.iterations == parameters.max_iterations)
         {
-          result.failure
-            = "no convergence in " + std::to_string(parameters.max_iterations)
-              + " iterations (residual norm " + std::to_string(norm) + ")";
+          // Three significant digits in any range (std::to_string prints
+          // a small norm as 0.000000).
+          std::ostringstream message;
+          message << "no convergence in " << parameters.max_iterations
+                  << " iterations (residual norm " << std::setprecision(3)
+                  << norm << ", force units)";
+          result.failure = message.str();
           return true;
         }
       return false;

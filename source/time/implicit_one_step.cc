@@ -207,7 +207,16 @@ namespace tissuefem::time
               "problem changes with time, so every step is the same problem "
               "(ramp the loads with 'Boundary conditions/Load factor', e.g. "
               "'min(t, 1)')");
-        if (halvings == context->time.max_step_halvings)
+        // The smallest step 'Maximum step halvings' allows, whichever
+        // way the step got there: successful steps after failures grow
+        // only geometrically back towards a failed size, so near a limit
+        // point a run could otherwise creep on in steps below the
+        // resolution of t itself (measured: dt = 1e-17, t unchanged, for
+        // ever).
+        const double smallest
+          = context->time.time_step
+            / std::ldexp(1., context->time.max_step_halvings);
+        if (halvings == context->time.max_step_halvings || h / 2 < smallest)
           {
             std::ostringstream reached;
             if (quasistatic)
@@ -216,11 +225,14 @@ namespace tissuefem::time
                       << context->solid.load_factor(state.time)
                       << " (a limit point of the load, or a load step "
                          "still too large)";
-            throw SolverError(message.str() + "; gave up after "
-                              + std::to_string(halvings)
-                              + " step halvings ('Time integration/Maximum "
-                                "step halvings')"
-                              + reached.str());
+            std::ostringstream smallest_text;
+            smallest_text << smallest;
+            throw SolverError(
+              message.str() + "; gave up after " + std::to_string(halvings)
+              + " step halvings of this step, at the smallest step 'Time "
+                "integration/Maximum step halvings' allows ('Time step' / 2^"
+              + std::to_string(context->time.max_step_halvings) + " = "
+              + smallest_text.str() + ")" + reached.str());
           }
         parallel_tools::screen()
           << "  " << message.str() << "; retrying with dt = " << h / 2

@@ -39,7 +39,12 @@ namespace tissuefem::time
                       "'Optimal Newton iterations' says), but never straight "
                       "back to a size that failed: it approaches the last "
                       "failed size geometrically (sqrt(h h_failed)), and that "
-                      "memory fades by a factor 1.25 per successful step.");
+                      "memory fades by a factor 1.25 per successful step. "
+                      "No step is tried below 'Time step' / 2^(this number), "
+                      "however the step got small: a quasistatic run that "
+                      "reaches a limit point of its load stops there and "
+                      "reports the load factor it reached "
+                      "(tests/solver_failure/limit_point_svk_1d.prm).");
     prm.declare_entry(
       "Optimal Newton iterations",
       "0",
