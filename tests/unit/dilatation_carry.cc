@@ -40,6 +40,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <string>
@@ -81,9 +82,18 @@ namespace
     )" + extra;
   }
 
-  /// Effective dilatation (theta times its factor at @p time) and volume
-  /// of every active cell, by cell id.
-  std::map<CellId, std::pair<double, double>>
+  /// What a cell carries at a time: its effective dilatation (theta
+  /// times its factor), its volume, and its parent's id (its own at level
+  /// 0), so that the children of a coarsened cell can be found after they
+  /// are gone.
+  struct Carried
+  {
+    double theta, volume;
+    CellId parent;
+  };
+
+  /// What every active cell carries at @p time, by cell id.
+  std::map<CellId, Carried>
   effective_dilatations(solid::Solid<2>  &solid,
                         const VectorType &u,
                         const double      time)
@@ -93,13 +103,15 @@ namespace
     all              = u;
     const auto theta = solid::DilatationCarry<2>::cell_dilatations(
       d.dof_handler, *d.mapping, d.cell_quadrature, all);
-    std::map<CellId, std::pair<double, double>> result;
+    std::map<CellId, Carried> result;
     for (const auto &cell : d.dof_handler.active_cell_iterators())
       {
         const unsigned int i = cell->active_cell_index();
-        result[cell->id()]
-          = {theta[i].first * solid.dilatation_carry().factor(i, time),
-             theta[i].second};
+        result.emplace(
+          cell->id(),
+          Carried{theta[i].first * solid.dilatation_carry().factor(i, time),
+                  theta[i].second,
+                  cell->level() > 0 ? cell->parent()->id() : cell->id()});
       }
     return result;
   }
@@ -112,47 +124,46 @@ namespace
   };
 
   /// The largest relative difference between what each new cell carries
-  /// and what it came from (parent, children or itself).
+  /// and what it came from (parent, children or itself); infinite where a
+  /// new cell came from nothing the old mesh had.
   double
-  carry_mismatch(const std::map<CellId, std::pair<double, double>> &before,
-                 const std::map<CellId, std::pair<double, double>> &after,
-                 const Triangulation<2> &triangulation,
-                 Kinds                  &kinds)
+  carry_mismatch(const std::map<CellId, Carried> &before,
+                 const std::map<CellId, Carried> &after,
+                 const Triangulation<2>          &triangulation,
+                 Kinds                           &kinds)
   {
     double worst = 0;
     for (const auto &cell : triangulation.active_cell_iterators())
       {
-        const double carried  = after.at(cell->id()).first;
-        double       expected = 0;
+        double expected = 0;
         if (before.count(cell->id()))
           {
-            expected = before.at(cell->id()).first;
+            expected = before.at(cell->id()).theta;
             ++kinds.kept;
           }
         else if (cell->level() > 0 && before.count(cell->parent()->id()))
           {
-            expected = before.at(cell->parent()->id()).first;
+            expected = before.at(cell->parent()->id()).theta;
             ++kinds.children;
           }
         else
           {
-            ++kinds.merged;
             // Coarsened: the volume-weighted mean of the old children.
             double sum = 0, volume = 0;
-            for (const auto &[id, value] : before)
-              {
-                const std::string child = id.to_string();
-                const std::string self  = cell->id().to_string();
-                if (child.size() == self.size() + 1
-                    && child.compare(0, self.size(), self) == 0)
-                  {
-                    sum += value.first * value.second;
-                    volume += value.second;
-                  }
-              }
-            expected = volume > 0 ? sum / volume : -1;
+            for (const auto &[id, old] : before)
+              if (old.parent == cell->id() && id != cell->id())
+                {
+                  sum += old.theta * old.volume;
+                  volume += old.volume;
+                }
+            if (volume == 0)
+              return std::numeric_limits<double>::infinity();
+            expected = sum / volume;
+            ++kinds.merged;
           }
-        worst = std::max(worst, std::abs(carried - expected) / expected);
+        worst = std::max(worst,
+                         std::abs(after.at(cell->id()).theta - expected)
+                           / expected);
       }
     return worst;
   }
