@@ -210,16 +210,20 @@ namespace tissuefem::adaptation
               discretization.hanging_node_constraints.distribute(*vectors[k]);
             }
           // Before anyone else assembles on the new mesh.
+          if (!carry)
+            {
+              solid.dilatation_carry().clear();
+              return;
+            }
           Vector<double> u_new;
-          if (carry)
-            u_new = *vectors[u_k];
-          solid.dilatation_carry().finish(
-            dof_handler,
-            *discretization.mapping,
-            discretization.cell_quadrature,
-            u_new,
-            time,
-            carry ? parameters.dilatation_release_steps * time_step : 0.);
+          u_new = *vectors[u_k];
+          solid.dilatation_carry().finish(dof_handler,
+                                          *discretization.mapping,
+                                          discretization.cell_quadrature,
+                                          u_new,
+                                          time,
+                                          parameters.dilatation_release_steps
+                                            * time_step);
         },
         boost::signals2::at_front);
     solid.setup();

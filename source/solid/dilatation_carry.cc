@@ -69,7 +69,6 @@ namespace tissuefem::solid
         else
           carried[cell->id()] = handed_on;
       }
-    recorded = true;
   }
 
 
@@ -82,18 +81,10 @@ namespace tissuefem::solid
                                const double           time,
                                const double           duration)
   {
-    const bool carry = recorded && duration > 0;
-    log_ratio.assign(carry ? dof_handler.get_triangulation().n_active_cells()
-                           : 0,
-                     0.);
-    start          = time;
-    this->duration = duration;
-    recorded       = false;
-    if (!carry)
-      {
-        clear();
-        return;
-      }
+    Assert(duration > 0, ExcMessage("a release needs a positive duration"));
+    log_ratio.assign(dof_handler.get_triangulation().n_active_cells(), 0.);
+    start            = time;
+    this->duration   = duration;
     const auto theta = cell_dilatations(dof_handler, mapping, quadrature, u);
     for (const auto &cell : dof_handler.active_cell_iterators())
       {
@@ -139,7 +130,6 @@ namespace tissuefem::solid
     carried.clear();
     merged.clear();
     log_ratio.clear();
-    recorded = false;
   }
 
 

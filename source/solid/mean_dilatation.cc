@@ -36,10 +36,11 @@ namespace tissuefem::solid
   bool
   apply_mean_dilatation(std::vector<Tensor<2, dim>> &F,
                         const double                *JxW,
-                        const unsigned int           n_q)
+                        const unsigned int           n_q,
+                        const double                 carried)
   {
     const double theta = mean_dilatation(F, JxW, n_q);
-    return theta > 0 && apply_dilatation(F, n_q, theta);
+    return theta > 0 && apply_dilatation(F, n_q, carried * theta);
   }
 
 
@@ -156,7 +157,8 @@ namespace tissuefem::solid
     const Tensor<2, dim> &, const double);                                  \
   template bool apply_mean_dilatation<dim>(std::vector<Tensor<2, dim>> &,   \
                                            const double *,                  \
-                                           const unsigned int);             \
+                                           const unsigned int,              \
+                                           const double);                   \
   template bool apply_dilatation<dim>(std::vector<Tensor<2, dim>> &,        \
                                       const unsigned int,                   \
                                       const double);                        \

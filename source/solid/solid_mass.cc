@@ -176,15 +176,13 @@ namespace tissuefem::solid
             energy = std::numeric_limits<double>::infinity();
             break;
           }
-        const double cell_theta = materials.mean_dilatation_formulation()
-                                    ? mean_dilatation(F, cache.JxW(c), n_q)
-                                    : 1.;
-        const double carried
-          = carry_time ? carry.factor(cell->active_cell_index(), *carry_time)
-                       : 1.;
         if (materials.mean_dilatation_formulation()
-            && !(cell_theta > 0
-                 && apply_dilatation(F, n_q, carried * cell_theta)))
+            && !apply_mean_dilatation(
+              F,
+              cache.JxW(c),
+              n_q,
+              carry_time ? carry.factor(cell->active_cell_index(), *carry_time)
+                         : 1.))
           {
             // No Fbar where a cell is inverted: an inadmissible state.
             energy = std::numeric_limits<double>::infinity();

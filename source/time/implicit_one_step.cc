@@ -101,7 +101,9 @@ namespace tissuefem::time
     if (context->newton.lift_boundary_increments)
       try
         {
-          guess = next.u;
+          // The guess is kept for keep_better_guess() below.
+          if (c == 0)
+            guess = next.u;
           // With 'Jacobian reuse across steps', the factorization of an
           // earlier step of the same size serves while the steps converge
           // (Newton makes a fresh one where it contracts too slowly).

@@ -58,8 +58,8 @@ namespace tissuefem::solid
            const double           time);
 
     /// After the change (the state interpolated to the new mesh): the
-    /// ratios r of every active cell, released over @p duration from
-    /// @p time. A zero @p duration (or no record()) clears the carry.
+    /// ratios r of every active cell, released over @p duration (> 0)
+    /// from @p time; a cell record() said nothing about carries nothing.
     void
     finish(const DoFHandler<dim> &dof_handler,
            const Mapping<dim>    &mapping,
@@ -93,7 +93,6 @@ namespace tissuefem::solid
     /// Of cells to be coarsened, by their parent's id: the sums of V
     /// theta and of V over the children.
     std::map<CellId, std::pair<double, double>> merged;
-    bool                                        recorded = false;
     /// log r per active cell, and the release's start and duration.
     std::vector<double> log_ratio;
     double              start    = 0;

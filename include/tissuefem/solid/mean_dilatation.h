@@ -67,14 +67,17 @@ namespace tissuefem::solid
                    const double                 theta);
 
   /**
-   * Replaces the deformation gradients of one cell by their Fbar; returns
-   * false (leaving them) if some det F <= 0.
+   * Replaces the deformation gradients of one cell by their Fbar for its
+   * mean dilatation times @p carried (a dilatation carried across a mesh
+   * change, DilatationCarry; 1 otherwise); returns false (leaving them) if
+   * some det F <= 0.
    */
   template <int dim>
   bool
   apply_mean_dilatation(std::vector<Tensor<2, dim>> &F,
                         const double                *JxW,
-                        const unsigned int           n_q);
+                        const unsigned int           n_q,
+                        const double                 carried = 1);
 
   /// phi_F and phi_theta in closed form from Pbar = dPsi/dF at Fbar:
   /// phi_F = s Pbar - (Pbar : Fbar)/d F^-T, phi_theta = (Pbar : Fbar)/(d
