@@ -164,8 +164,9 @@ namespace tissuefem::boundary
           {id, make_function<dim>(expressions, dim, neumann_name)});
         loads_name_time = loads_name_time || names_time(expressions);
       }
-    loads_name_time = loads_name_time || names_time(parameters.body_force)
-                      || names_time(parameters.load_factor);
+    factor_names_time = names_time(parameters.load_factor);
+    loads_name_time   = loads_name_time || names_time(parameters.body_force)
+                      || factor_names_time;
     const std::string load_factor_name = "Boundary conditions/Load factor";
     for (const char *space : {"x", "y", "z"})
       require(!names_variable(parameters.load_factor, space),
@@ -218,6 +219,14 @@ namespace tissuefem::boundary
   {
     load_factor_function->set_time(time);
     return load_factor_function->value(Point<dim>());
+  }
+
+
+  template <int dim>
+  bool
+  BoundaryConditions<dim>::load_factor_names_time() const
+  {
+    return factor_names_time;
   }
 
 

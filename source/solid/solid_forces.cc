@@ -212,9 +212,11 @@ namespace tissuefem::solid
 
 
   template <int dim>
-  double
+  std::optional<double>
   Solid<dim>::load_factor(const double time) const
   {
+    if (!boundary_conditions.load_factor_names_time())
+      return std::nullopt;
     return boundary_conditions.load_factor_at(time);
   }
 
@@ -238,11 +240,11 @@ namespace tissuefem::solid
                                                    const VectorType &,           \
                                                    const double,                 \
                                                    VectorType &);                \
-  template std::vector<double> Solid<dim>::held_force(const VectorType &,        \
-                                                      const VectorType &,        \
-                                                      double);                   \
-  template bool                Solid<dim>::changes_with_time() const;            \
-  template double              Solid<dim>::load_factor(const double) const;
+  template std::vector<double>   Solid<dim>::held_force(const VectorType &,      \
+                                                      const VectorType &,      \
+                                                      double);                 \
+  template bool                  Solid<dim>::changes_with_time() const;          \
+  template std::optional<double> Solid<dim>::load_factor(const double) const;
   TISSUEFEM_INSTANTIATE(1)
   TISSUEFEM_INSTANTIATE(2)
   TISSUEFEM_INSTANTIATE(3)

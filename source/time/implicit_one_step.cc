@@ -222,11 +222,13 @@ namespace tissuefem::time
           {
             std::ostringstream reached;
             if (quasistatic)
-              reached << "; the last equilibrium is at t = " << state.time
-                      << ", load factor "
-                      << context->solid.load_factor(state.time)
-                      << " (a limit point of the load, or a load step "
-                         "still too large)";
+              {
+                reached << "; the last equilibrium is at t = " << state.time;
+                if (const auto lambda = context->solid.load_factor(state.time))
+                  reached << ", load factor " << *lambda;
+                reached << " (a limit point of the load, or a load step "
+                           "still too large)";
+              }
             std::ostringstream smallest_text;
             smallest_text << smallest;
             throw SolverError(

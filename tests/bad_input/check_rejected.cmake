@@ -1,8 +1,9 @@
 # Runs tissuefem on an input that must fail, in an empty directory, and
 # checks that it fails cleanly: exit status EXPECTED_STATUS (2: bad input,
-# 3: solver failure), one line on stderr naming the
-# culprit, and no files written; or, with ALLOW_FILES (a run that starts and
-# then fails in the solver), no "nan" in any file written.
+# 3: solver failure), one line on stderr naming the culprit (EXPECTED, and
+# not UNEXPECTED where given), and no files written; or, with ALLOW_FILES (a
+# run that starts and then fails in the solver), no "nan" in any file
+# written.
 file(REMOVE_RECURSE ${WORKDIR})
 file(MAKE_DIRECTORY ${WORKDIR})
 execute_process(COMMAND ${TISSUEFEM} ${INPUT}
@@ -21,6 +22,12 @@ endif()
 string(FIND "${err}" "${EXPECTED}" found)
 if(found EQUAL -1)
   message(FATAL_ERROR "error message '${err}' does not name '${EXPECTED}'")
+endif()
+if(UNEXPECTED)
+  string(FIND "${err}" "${UNEXPECTED}" found)
+  if(NOT found EQUAL -1)
+    message(FATAL_ERROR "error message '${err}' names '${UNEXPECTED}'")
+  endif()
 endif()
 if(ALLOW_FILES)
   # CSV files are plain text; VTU data are compressed, and the writer refuses

@@ -61,6 +61,10 @@ namespace tissuefem::boundary
     double
     load_factor_at(const double time) const;
 
+    /// Whether 'Load factor' names t (else it is a constant).
+    bool
+    load_factor_names_time() const;
+
     /**
      * Whether anything the solid is given changes with time: a Dirichlet,
      * Neumann or body force expression, or the load factor, names t. If
@@ -94,5 +98,7 @@ namespace tissuefem::boundary
     std::unique_ptr<Function<dim>> load_factor_function;
     /// Whether a Neumann, body force or load factor expression names t.
     bool loads_name_time = false;
+    /// Whether the load factor expression names t.
+    bool factor_names_time = false;
   };
 } // namespace tissuefem::boundary

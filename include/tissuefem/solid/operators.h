@@ -5,6 +5,7 @@
 #include <tissuefem/base/parallel.h>
 
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -187,8 +188,10 @@ namespace tissuefem::solid
     changes_with_time() const = 0;
 
     /// The load factor lambda(@p time) that scales every load
-    /// ('Boundary conditions/Load factor', dimensionless).
-    virtual double
+    /// ('Boundary conditions/Load factor', dimensionless), if that factor
+    /// names t; none if it is a constant, so that a report does not call
+    /// loads whose own expressions name t "load factor 1".
+    virtual std::optional<double>
     load_factor(const double time) const = 0;
     /// The consistent mass matrix, assembled on first use.
     virtual const MatrixType &

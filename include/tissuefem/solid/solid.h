@@ -162,7 +162,7 @@ namespace tissuefem::solid
     has_hanging_nodes() const override;
     bool
     changes_with_time() const override;
-    double
+    std::optional<double>
     load_factor(const double time) const override;
 
     double
