@@ -103,35 +103,19 @@ namespace tissuefem::solid
 
 
   template <int dim>
-  template <typename ScratchType, typename CopyType>
-  void
-  Solid<dim>::mean_dilatation_cell(const materials::Interface<dim> &material,
-                                   const unsigned int               c,
-                                   const unsigned int               cell_index,
-                                   const bool                       jacobian,
-                                   const double                     carried,
-                                   ScratchType                     &s,
-                                   CopyType                        &copy) const
+  template <typename ScratchType>
+  std::pair<double, double>
+  Solid<dim>::dilatation_point_terms(const materials::Interface<dim> &material,
+                                     const unsigned int               c,
+                                     const unsigned int cell_index,
+                                     const double       theta,
+                                     const bool         linearize,
+                                     ScratchType       &s) const
   {
     const unsigned int n_q = cache.n_q, n_scalar = cache.n_scalar;
-    const double      *JxW = cache.JxW(c);
-    for (unsigned int q = 0; q < n_q; ++q)
-      {
-        s.F[q] = unit_symmetric_tensor<dim>();
-        for (unsigned int k = 0; k < n_scalar; ++k)
-          s.F[q] += outer_product(s.U[k], cache.gradient(c, q, k));
-      }
-    const double mean = solid::mean_dilatation(s.F, JxW, n_q);
-    if (mean <= 0)
-      {
-        copy.inverted_det = mean;
-        return;
-      }
-    // A carried dilatation scales theta by a constant: dtheta/du (b) and
-    // the pressure-like term scale with it, Theta and C do not.
-    const double theta  = carried * mean;
-    const auto   method = materials.tangent_method();
-    double       volume = 0, Phi_theta = 0;
+    const double      *JxW    = cache.JxW(c);
+    const auto         method = materials.tangent_method();
+    double             volume = 0, Phi_theta = 0;
     s.Theta = 0;
     for (unsigned int k = 0; k < n_scalar; ++k)
       s.b[k] = s.C[k] = Tensor<1, dim>();
@@ -143,7 +127,7 @@ namespace tissuefem::solid
         const Tensor<2, dim> F_bar
           = modified_deformation_gradient(s.F[q], theta);
         const Tensor<1, dim> &a = fibre_field.at(cell_index, q);
-        if (jacobian)
+        if (linearize)
           {
             material.stress_and_tangent(F_bar, a, P_bar, A_bar, method);
             if (materials.project_tangent())
@@ -170,11 +154,100 @@ namespace tissuefem::solid
         volume += JxW[q];
       }
     for (unsigned int k = 0; k < n_scalar; ++k)
-      s.b[k] *= carried / volume;
+      s.b[k] /= volume;
+    return {volume, Phi_theta};
+  }
+
+
+  template <int dim>
+  template <typename ScratchType, typename CopyType>
+  void
+  Solid<dim>::mean_dilatation_cell(const materials::Interface<dim> &material,
+                                   const unsigned int               c,
+                                   const unsigned int               cell_index,
+                                   const bool                       jacobian,
+                                   const double                     carried,
+                                   ScratchType                     &s,
+                                   CopyType                        &copy) const
+  {
+    const double mean = solid::mean_dilatation(s.F, cache.JxW(c), cache.n_q);
+    if (mean <= 0)
+      {
+        copy.inverted_det = mean;
+        return;
+      }
+    // A carried dilatation scales theta by a constant: dtheta/du (b) and
+    // the pressure-like term scale with it, Theta and C do not.
+    const auto [volume, Phi_theta] = dilatation_point_terms(
+      material, c, cell_index, carried * mean, jacobian, s);
+    for (unsigned int k = 0; k < cache.n_scalar; ++k)
+      s.b[k] *= carried;
     // The pressure-like term Phi_theta/V couples every point through
     // theta: its first derivative is cof F_q, its second dcof/dF.
-    const double pressure = carried * Phi_theta / volume;
-    for (unsigned int q = 0; q < n_q; ++q)
+    add_cell_pressure(carried * Phi_theta / volume, jacobian, s);
+  }
+
+
+  template <int dim>
+  template <typename ScratchType, typename CopyType>
+  void
+  Solid<dim>::three_field_cell(const materials::Interface<dim> &material,
+                               const unsigned int               c,
+                               const unsigned int               cell_index,
+                               const bool                       jacobian,
+                               ScratchType                     &s,
+                               CopyType                        &copy) const
+  {
+    const double mean = solid::mean_dilatation(s.F, cache.JxW(c), cache.n_q);
+    // The first assembly of a step sets the unknowns: the carried
+    // dilatation of a changed cell (the old mesh's, so that its pressure
+    // is the old one and the momentum rows start balanced), else the
+    // cell's own; the pressure consistent with it.
+    if (three_field.initializing() && mean > 0)
+      three_field.theta(c) = mean * carry.factor(cell_index, three_field_start);
+    const double theta = three_field.theta(c);
+    if (mean <= 0 || theta <= 0)
+      {
+        copy.inverted_det = std::min(mean, theta);
+        return;
+      }
+    // The cell's b, C and Theta are those of the last Jacobian, so that
+    // modified Newton ('Jacobian reuse') condenses with the matrix it
+    // solves with.
+    const bool linearize = jacobian || !three_field.linearized(c);
+    const auto [volume, Phi_theta]
+      = dilatation_point_terms(material, c, cell_index, theta, linearize, s);
+    if (three_field.initializing())
+      three_field.pressure(c) = Phi_theta / volume;
+    const double pressure = three_field.pressure(c);
+    add_cell_pressure(pressure, jacobian, s);
+    if (linearize)
+      {
+        std::vector<double> b(cache.n_dofs), C(cache.n_dofs);
+        for (unsigned int k = 0; k < cache.n_scalar; ++k)
+          for (unsigned int a = 0; a < dim; ++a)
+            {
+              b[cache.local_index[k * dim + a]] = s.b[k][a];
+              C[cache.local_index[k * dim + a]] = s.C[k][a];
+            }
+        three_field.set_linearization(
+          c, std::move(b), std::move(C), s.Theta, volume);
+      }
+    three_field.add_condensed_rows(c,
+                                   mean - theta,
+                                   Phi_theta - pressure * volume,
+                                   copy.rhs);
+  }
+
+
+  template <int dim>
+  template <typename ScratchType>
+  void
+  Solid<dim>::add_cell_pressure(const double pressure,
+                                const bool   jacobian,
+                                ScratchType &s) const
+  {
+    for (unsigned int q = 0; q < cache.n_q; ++q)
       {
         s.P[q] += pressure * cofactor(s.F[q]);
         if (jacobian)
@@ -225,32 +298,37 @@ namespace tissuefem::solid
                                ScratchType                     &s,
                                CopyType                        &copy) const
   {
-    if (materials.mean_dilatation_formulation())
-      {
-        mean_dilatation_cell(material,
-                             c,
-                             copy.cell_index,
-                             request.jacobian,
-                             request.carry
-                               ? carry.factor(copy.cell_index, request.time)
-                               : 1.,
-                             s,
-                             copy);
-        return;
-      }
-    // F at every point first: an inverted point (where the model cannot
-    // represent it) discards the whole cell, and the report gives the
-    // cell's smallest det F.
+    // F at every point first. In the displacement formulation an inverted
+    // point (where the model cannot represent it) discards the whole
+    // cell, and the report gives the cell's smallest det F; the mean
+    // dilatation element checks its points itself.
+    const bool mean_dilatation = materials.mean_dilatation_formulation();
     for (unsigned int q = 0; q < cache.n_q; ++q)
       {
         Tensor<2, dim> &F = s.F[q];
         F                 = unit_symmetric_tensor<dim>();
         for (unsigned int k = 0; k < cache.n_scalar; ++k)
           F += outer_product(s.U[k], cache.gradient(c, q, k));
+        if (mean_dilatation)
+          continue;
         const double det = determinant(F);
         if (det <= 0 && !material.admits_inversion())
           copy.inverted_det = std::min(copy.inverted_det, det);
       }
+    if (!mean_dilatation)
+      return;
+    if (three_field.active())
+      three_field_cell(material, c, copy.cell_index, request.jacobian, s, copy);
+    else
+      mean_dilatation_cell(material,
+                           c,
+                           copy.cell_index,
+                           request.jacobian,
+                           request.carry
+                             ? carry.factor(copy.cell_index, request.time)
+                             : 1.,
+                           s,
+                           copy);
   }
 
 
@@ -604,6 +682,8 @@ namespace tissuefem::solid
     residual.compress(VectorOperation::add);
     if (request.jacobian)
       jacobian_matrix.compress(VectorOperation::add);
+    if (three_field.active() && request.internal)
+      three_field.initialized();
     report_inversions(inverted);
   }
 

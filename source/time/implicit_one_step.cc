@@ -41,6 +41,13 @@ namespace tissuefem::time
                                  residual,
                                  refactorize);
     report.solve_seconds += seconds_since(start);
+    // The cell unknowns of the three-field element move with the update.
+    auto *unknowns = solid.iteration_unknowns();
+    if (unknowns && unknowns->iterating())
+      {
+        unknowns->predict_update(update);
+        unknowns->set_step_length(1);
+      }
     u += update;
     ++report.newton_iterations;
     return update.linfty_norm();
@@ -78,18 +85,15 @@ namespace tissuefem::time
   }
 
 
-  std::string
-  ImplicitOneStep::attempt(const State &state,
-                           const double h,
-                           State       &next,
-                           StepReport  &report)
+  double
+  ImplicitOneStep::lift(const double              c,
+                        const double              t_start,
+                        const double              t_new,
+                        VectorType               &u,
+                        StepReport               &report,
+                        solid::IterationUnknowns *unknowns)
   {
-    auto        &solid = context->solid;
-    const double c     = mass_coefficient(h);
-    const double t_new = state.time + h;
-    if (next.u.size() != state.u.size())
-      solid.initialize_vector(next.u);
-    predict(state, h, u_tilde, next.u);
+    auto &solid = context->solid;
     // The lifting's Jacobian, factorized at the guess, serves Newton's
     // first iterations ('Jacobian reuse') when the lifting moved the body
     // little (below 1 % of its size: a smooth step). After a larger motion
@@ -102,23 +106,26 @@ namespace tissuefem::time
       try
         {
           // The guess is kept for keep_better_guess() below.
-          if (c == 0)
-            guess = next.u;
+          const bool compare = c == 0 && unknowns == nullptr;
+          if (compare)
+            guess = u;
           // With 'Jacobian reuse across steps', the factorization of an
           // earlier step of the same size serves while the steps converge
           // (Newton makes a fresh one where it contracts too slowly).
           const bool refactorize
             = !(context->newton.reuse_jacobian
                 && context->newton.reuse_across_steps && kept_coefficient == c);
-          motion
-            = lift_boundary_increment(c, t_new, next.u, report, refactorize);
+          motion = lift_boundary_increment(c, t_new, u, report, refactorize);
           kept_coefficient = c;
           // Only without inertia: there the load increment meets the
           // bare stiffness; with a mass term (real-time dynamic scenes)
           // the lifting is well conditioned and the check would cost two
-          // energy evaluations a step.
-          if (c == 0)
-            motion = keep_better_guess(guess, c, t_new, next.u, motion);
+          // energy evaluations a step. Not with the three-field update,
+          // whose lifted state is off the constraint (its energy no
+          // measure) and whose lifting does not overshoot so (Cook's
+          // membrane: 4-5 iterations per step without the check).
+          if (compare)
+            motion = keep_better_guess(guess, c, t_new, u, motion);
         }
       catch (const SolverError &)
         {
@@ -126,9 +133,52 @@ namespace tissuefem::time
           // singular Jacobian: Newton starts from the guess with the new
           // boundary values written in, and may halve the step.
           kept_coefficient = -1;
+          if (unknowns)
+            unknowns->begin_iterations(t_start);
         }
-    const bool lifted = motion >= 0 && motion <= 0.01 * solid.length_scale();
+    return motion;
+  }
+
+
+  std::string
+  ImplicitOneStep::attempt(const State &state,
+                           const double h,
+                           State       &next,
+                           StepReport  &report)
+  {
+    auto        &solid = context->solid;
+    const double c     = mass_coefficient(h);
+    const double t_new = state.time + h;
+    if (next.u.size() != state.u.size())
+      solid.initialize_vector(next.u);
+    predict(state, h, u_tilde, next.u);
+    // The three-field element's cell unknowns ('Newton solver/Mean
+    // dilatation update'): Newton updates them with u within this step.
+    solid::IterationUnknowns *unknowns = context->newton.three_field_dilatation
+                                           ? solid.iteration_unknowns()
+                                           : nullptr;
+    if (unknowns)
+      unknowns->begin_iterations(state.time);
+    const double motion = lift(c, state.time, t_new, next.u, report, unknowns);
+    const bool   lifted = motion >= 0 && motion <= 0.01 * solid.length_scale();
     solid.apply_dirichlet_values(t_new, next.u);
+    solvers::NewtonHooks hooks;
+    if (unknowns)
+      {
+        hooks.predict
+          = [unknowns](const VectorType &du) { unknowns->predict_update(du); };
+        hooks.trial = [unknowns](const double alpha) {
+          unknowns->set_step_length(alpha);
+        };
+      }
+    // With the three-field update the iterates are off the constraint
+    // theta(u) = theta~ until convergence, where the energy is no merit:
+    // the line search asks the residual norm to decrease.
+    std::function<double(const VectorType &)> energy;
+    if (!unknowns)
+      energy = [&](const VectorType &x) {
+        return solid.implicit_energy(x, u_tilde, c, t_new);
+      };
     const solvers::NewtonResult result = solvers::solve_newton(
       context->newton,
       next.u,
@@ -150,11 +200,12 @@ namespace tissuefem::time
                                      refactorize,
                                      std::min(0.1, 0.5 * norm / first));
       },
-      [&](const VectorType &x) {
-        return solid.implicit_energy(x, u_tilde, c, t_new);
-      },
+      energy,
       solid.length_scale(),
-      lifted);
+      lifted,
+      unknowns ? &hooks : nullptr);
+    if (unknowns)
+      unknowns->end_iterations(result.converged);
     last_iterations = result.iterations;
     report.jacobian_evaluations += result.jacobians;
     // The factorization kept for the next step's lifting: this step's

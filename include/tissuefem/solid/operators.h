@@ -3,6 +3,7 @@
 #include <deal.II/base/index_set.h>
 
 #include <tissuefem/base/parallel.h>
+#include <tissuefem/solid/iteration_unknowns.h>
 
 #include <limits>
 #include <optional>
@@ -193,6 +194,16 @@ namespace tissuefem::solid
     /// loads whose own expressions name t "load factor 1".
     virtual std::optional<double>
     load_factor(const double time) const = 0;
+
+    /// Unknowns Newton must update alongside u (the three-field mean
+    /// dilatation element's cell dilatations and pressures); null if the
+    /// operators have none.
+    virtual IterationUnknowns *
+    iteration_unknowns()
+    {
+      return nullptr;
+    }
+
     /// The consistent mass matrix, assembled on first use.
     virtual const MatrixType &
     mass_matrix()

@@ -13,6 +13,7 @@
 #include <tissuefem/solid/linear_simplex_kernel.h>
 #include <tissuefem/solid/nodal_dilatation.h>
 #include <tissuefem/solid/operators.h>
+#include <tissuefem/solid/three_field_dilatation.h>
 
 #include <functional>
 #include <map>
@@ -42,7 +43,7 @@ namespace tissuefem::solid
    * operators compute them from the parents.
    */
   template <int dim>
-  class Solid : public Operators
+  class Solid : public Operators, public IterationUnknowns
   {
   public:
     Solid(Discretization<dim>               &discretization,
@@ -221,6 +222,24 @@ namespace tissuefem::solid
       return carry;
     }
 
+    /// The three-field form of the mean dilatation element
+    /// (ThreeFieldDilatation) where the formulation is 'mean dilatation'.
+    IterationUnknowns *
+    iteration_unknowns() override;
+    void
+    begin_iterations(const double start_time) override;
+    void
+    predict_update(const VectorType &du) override;
+    void
+    set_step_length(const double alpha) override;
+    void
+    end_iterations(const bool converged) override;
+    bool
+    iterating() const override
+    {
+      return three_field.active();
+    }
+
   private:
     /// What one assembly pass computes.
     struct Request
@@ -309,6 +328,38 @@ namespace tissuefem::solid
                          const double                     carried,
                          ScratchType                     &s,
                          CopyType                        &copy) const;
+
+    /// The stresses (phi_F in s.P), and with @p linearize the tangents
+    /// and b = dtheta/du, C and Theta (mean_dilatation.h), of the mean
+    /// dilatation element at the cell dilatation @p theta, for the
+    /// deformation gradients in s.F; returns (V, Phi_theta).
+    template <typename ScratchType>
+    std::pair<double, double>
+    dilatation_point_terms(const materials::Interface<dim> &material,
+                           const unsigned int               c,
+                           const unsigned int               cell_index,
+                           const double                     theta,
+                           const bool                       linearize,
+                           ScratchType                     &s) const;
+
+    /// mean_dilatation_cell() with the cell's dilatation and pressure the
+    /// three-field unknowns (ThreeFieldDilatation).
+    template <typename ScratchType, typename CopyType>
+    void
+    three_field_cell(const materials::Interface<dim> &material,
+                     const unsigned int               c,
+                     const unsigned int               cell_index,
+                     const bool                       jacobian,
+                     ScratchType                     &s,
+                     CopyType                        &copy) const;
+
+    /// Adds the cell pressure's term pressure cof F_q to s.P (and its
+    /// derivative to s.A).
+    template <typename ScratchType>
+    void
+    add_cell_pressure(const double pressure,
+                      const bool   jacobian,
+                      ScratchType &s) const;
 
     /// The stored energy, with the carried cell dilatations of @p time
     /// where @p carry_time is given (implicit_energy()).
@@ -402,7 +453,12 @@ namespace tissuefem::solid
     std::unique_ptr<NodalDilatation<dim>> nodal;
     FibreField<dim>                       fibre_field;
     DilatationCarry<dim>                  carry;
-    AffineConstraints<double>             no_constraints;
+    /// The three-field unknowns, written by the assembly (one cell per
+    /// thread) while iterating().
+    mutable ThreeFieldDilatation three_field;
+    /// The start of the step being iterated (begin_iterations()).
+    double                    three_field_start = 0;
+    AffineConstraints<double> no_constraints;
     /// Constraints with the Dirichlet increment (implicit_residual_lifting).
     AffineConstraints<double>                         lifting_constraints;
     MatrixType                                        jacobian_matrix;

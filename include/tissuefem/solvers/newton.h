@@ -35,6 +35,10 @@ namespace tissuefem::solvers
     bool reuse_jacobian;
     /// Whether the factorization is also kept from step to step.
     bool reuse_across_steps;
+    /// Whether the mean dilatation element's cell dilatations and
+    /// pressures are Newton unknowns of their own within a step
+    /// ('Mean dilatation update = three-field').
+    bool three_field_dilatation;
     /// The largest |R_{k+1}| / |R_k| with a kept Jacobian before it is
     /// assembled and factorized anew.
     double reuse_contraction;
@@ -81,6 +85,18 @@ namespace tissuefem::solvers
    * caller has just assembled and factorized a Jacobian near @p u (the
    * first iteration may then reuse it).
    */
+  /**
+   * Unknowns outside u that move with it (the three-field element's cell
+   * dilatations and pressures, solid::IterationUnknowns): @p predict(du)
+   * after every linear solve, @p trial(alpha) before every evaluation at
+   * step length alpha along du (0 back to where du started).
+   */
+  struct NewtonHooks
+  {
+    std::function<void(const VectorType &)> predict;
+    std::function<void(double)>             trial;
+  };
+
   NewtonResult
   solve_newton(
     const NewtonParameters &parameters,
@@ -90,5 +106,6 @@ namespace tissuefem::solvers
                                                     &solve_jacobian,
     const std::function<double(const VectorType &)> &energy           = {},
     const double                                     length_scale     = 0,
-    const bool                                       jacobian_current = false);
+    const bool                                       jacobian_current = false,
+    const NewtonHooks                               *hooks = nullptr);
 } // namespace tissuefem::solvers

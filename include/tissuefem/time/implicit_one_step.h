@@ -120,6 +120,22 @@ namespace tissuefem::time
                             StepReport  &report,
                             const bool   refactorize = true);
 
+    /**
+     * The step's boundary lifting ('Lift boundary increments'): one
+     * Newton iteration from the guess @p u to t_new with the mass
+     * coefficient @p c, kept where keep_better_guess() says so, and the
+     * three-field cell @p unknowns (if any) moved with it. Returns the
+     * motion (as lift_boundary_increment(); -1 if no lifting was made or
+     * its Jacobian does not belong to the state Newton starts from).
+     */
+    double
+    lift(const double              c,
+         const double              t_start,
+         const double              t_new,
+         VectorType               &u,
+         StepReport               &report,
+         solid::IterationUnknowns *unknowns);
+
     /// After lift_boundary_increment() moved @p guess to @p lifted (by
     /// @p motion): puts the guess with the new boundary values written in
     /// back into @p lifted where that has the lower energy. Returns the
