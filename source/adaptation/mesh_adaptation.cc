@@ -65,13 +65,18 @@ namespace tissuefem::adaptation
       Patterns::Double(0, 1000),
       "With 'Materials/Formulation = mean dilatation': each cell of a "
       "changed mesh starts with the volume change (cell mean of det F) of "
-      "the cell it came from, and its own is phased in linearly over this "
-      "many times 'Time integration/Time step' of simulated time, so that "
-      "refining a nearly incompressible body does not create pressure jumps "
-      "of the bulk modulus times the variation of det F inside the old cell "
-      "(which a halved step would face undiminished). Only the implicit "
-      "integrators' equations see the carried part; outputs show the "
-      "material itself. 0: a new cell has its own volume change at once.");
+      "the cell it came from, so that refining a nearly incompressible body "
+      "does not create pressure jumps of the bulk modulus times the "
+      "variation of det F inside the old cell. With 'Newton solver/Mean "
+      "dilatation update = three-field' (default) that is the first iterate "
+      "of the cell dilatations in the next step, which then solves the new "
+      "mesh's equations, and this entry only says whether to carry (0: "
+      "not). With 'condensed' the cell's own volume change is phased in "
+      "linearly over this many times 'Time integration/Time step' of "
+      "simulated time (a halved step faces half the change). Only the "
+      "implicit integrators' equations see the carried part; outputs show "
+      "the material itself. 0: a new cell has its own volume change at "
+      "once.");
     prm.leave_subsection();
   }
 

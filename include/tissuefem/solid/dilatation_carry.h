@@ -41,6 +41,12 @@ namespace tissuefem::solid
    * (their own theta up to quadrature), unchanged cells what they carried
    * still (a new change restarts the release).
    *
+   * With the three-field update (ThreeFieldDilatation, the default) the
+   * carried dilatation is instead the first iterate of the cell
+   * dilatation unknowns in the step after the change: Newton solves the
+   * new mesh's equations at once and, once a step has converged, the
+   * carry is cleared (Solid::end_iterations()).
+   *
    * Works on meshes every process holds whole (the displacement given is
    * replicated), so that the owner of a child need not own its parent.
    */
