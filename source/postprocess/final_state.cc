@@ -1,5 +1,6 @@
 #include <tissuefem/postprocess/final_state.h>
 #include <tissuefem/solid/quantities.h>
+#include <tissuefem/solid/self_overlap.h>
 
 #include <iomanip>
 #include <sstream>
@@ -20,8 +21,10 @@ namespace tissuefem::postprocess
       Patterns::Bool(),
       "At the end of the run, report (on screen and in the summary file) the "
       "distance from the rest shape up to a rigid motion (largest vertex "
-      "distance after the best rigid fit, length units) and the smallest J = "
-      "det F: the figures of an inversion-recovery test.");
+      "distance after the best rigid fit, length units), the smallest J = "
+      "det F, and the tangled share of the volume (inverted, or where the "
+      "body overlaps itself: solid/self_overlap.h): the figures of an "
+      "inversion-recovery test.");
   }
 
 
@@ -53,11 +56,13 @@ namespace tissuefem::postprocess
         std::ostringstream rest;
         rest << std::setprecision(4) << "distance from rest shape "
              << solid::distance_from_rest_shape(d, u) << " min J "
-             << solid::min_jacobian(d, u);
+             << solid::min_jacobian(d, u) << " tangled "
+             << solid::tangled_volume_fraction(d, u);
         this->context->summary.line(rest.str());
         screen << rest.str()
                << " (largest vertex distance after the best rigid fit, "
-                  "length units; smallest det F)"
+                  "length units; smallest det F; share of the volume that is "
+                  "inverted or overlaps the body elsewhere)"
                << std::endl;
       }
     const double       stored = solid.stored_energy(state.u);
