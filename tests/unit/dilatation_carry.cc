@@ -38,12 +38,10 @@
 #include <tissuefem/problems/interface.h>
 
 #include "../tests.h"
+#include "cook_membrane.h"
 #include "solid_scene.h"
 
-#include <cctype>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -54,30 +52,14 @@ using namespace tissuefem;
 
 namespace
 {
-  /// Cook's membrane, F-bar, nu = 0.4999 (parameters/cook_membrane.prm),
-  /// on 4 x 4 cells, adapting by the stress-jump indicator.
+  /// Cook's membrane on 4 x 4 cells, adapting by the stress-jump
+  /// indicator, with the condensed update.
   std::string
   cook(const std::string &extra)
   {
-    return R"(
-    set Dimension = 2
-    subsection Geometry
-      set Corners      = 0, 0; 48, 44; 0, 44; 48, 60
-      set Subdivisions = 4, 4
-    end
-    subsection Materials
-      set Model           = neo-Hookean
-      set Formulation     = mean dilatation
-      set Young's modulus = 240.5659612
-      set Poisson's ratio = 0.4999
-    end
-    subsection Boundary conditions
-      set Dirichlet = 0: xy: 0; 0
-      set Neumann   = 1: 0; 6.25*t
-    end
+    return tissuefem_tests::cook_membrane("4, 4", R"(
     subsection Time integration
-      set Integrator = quasistatic
-      set Time step  = 0.05
+      set Time step = 0.05
     end
     subsection Mesh refinement
       set Indicator        = stress jump
@@ -86,8 +68,9 @@ namespace
     subsection Newton solver
       set Mean dilatation update = condensed
     end
-    )" + extra;
+    )" + extra);
   }
+
 
   /// What a cell carries at a time: its effective dilatation (theta
   /// times its factor), its volume, and its parent's id (its own at level
@@ -301,68 +284,18 @@ namespace
   void
   check_adaptive_run()
   {
-    ParameterHandler prm;
-    declare_all_parameters(prm);
-    const std::string directory = "adaptive_cook";
-    std::filesystem::remove_all(directory);
-    prm.parse_input_from_string(cook(R"(
-    set Problem = elasticity
-    subsection Time integration
-      set End time = 1
-    end
-    subsection Mesh refinement
-      set Maximum levels = 6
-      set Maximum cells  = 1500
-    end
-    subsection Newton solver
-      set Maximum iterations = 100
-    end
-    subsection Output
-      set Directory = adaptive_cook
-      subsection VTU
-        set Interval = 0
-      end
-      subsection Probes
-        set Points = 48, 60
-      end
-    end
-    )"));
-    // The run's screen report holds iteration counts: not compared.
-    std::string        failure;
-    std::ostringstream muted;
-    std::streambuf    *screen = std::cout.rdbuf(muted.rdbuf());
-    try
-      {
-        auto problem = problems::ProblemRegistry::instance().create(
-          "elasticity", prm, problems::RunContext{".", ""});
-        problem->setup();
-        problem->run();
-      }
-    catch (const std::exception &e)
-      {
-        failure = e.what();
-      }
-    std::cout.rdbuf(screen);
-    // The last line of probes.csv: time, probe, X, Y, u_x, u_y.
-    std::ifstream probes(directory + "/probes.csv");
-    std::string   line, last;
-    while (std::getline(probes, line))
-      if (!line.empty() && std::isdigit(line[0]))
-        last = line;
-    double             values[6] = {};
-    std::istringstream fields(last);
-    for (double &v : values)
-      {
-        fields >> v;
-        fields.ignore(1);
-      }
-    tissuefem_tests::check(failure.empty() && values[0] == 1,
+    const auto run = tissuefem_tests::run_adaptive_cook(
+      1500,
+      "adaptive_cook",
+      "subsection Newton solver\n set Mean dilatation update = condensed\n"
+      "end\n");
+    tissuefem_tests::check(run.failure.empty() && run.time == 1,
                            "adaptive run reaches t = 1",
-                           failure + " (last line '" + last + "')");
-    const double error = std::abs(values[5] - 6.9347) / 6.9347;
+                           run.failure);
+    const double error = std::abs(run.tip - 6.9347) / 6.9347;
     tissuefem_tests::check(error < 0.01,
                            "tip deflection within 1 % of 6.9347",
-                           std::to_string(values[5]));
+                           std::to_string(run.tip));
   }
 } // namespace
 

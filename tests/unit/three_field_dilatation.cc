@@ -27,13 +27,11 @@
 #include <tissuefem/problems/interface.h>
 
 #include "../tests.h"
+#include "cook_membrane.h"
 #include "solid_scene.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <string>
 
@@ -42,31 +40,11 @@ using namespace tissuefem;
 
 namespace
 {
-  /// Cook's membrane, F-bar, nu = 0.4999, on 16 x 16 cells.
+  /// Cook's membrane on 16 x 16 cells.
   std::string
   cook(const std::string &extra)
   {
-    return R"(
-    set Dimension = 2
-    subsection Geometry
-      set Corners      = 0, 0; 48, 44; 0, 44; 48, 60
-      set Subdivisions = 16, 16
-    end
-    subsection Materials
-      set Model           = neo-Hookean
-      set Formulation     = mean dilatation
-      set Young's modulus = 240.5659612
-      set Poisson's ratio = 0.4999
-    end
-    subsection Boundary conditions
-      set Dirichlet = 0: xy: 0; 0
-      set Neumann   = 1: 0; 6.25*t
-    end
-    subsection Time integration
-      set Integrator = quasistatic
-      set End time   = 1
-    end
-    )" + extra;
+    return tissuefem_tests::cook_membrane("16, 16", extra);
   }
 
 
@@ -209,78 +187,26 @@ namespace
   void
   check_adaptive_run()
   {
-    ParameterHandler prm;
-    declare_all_parameters(prm);
-    const std::string directory = "adaptive_cook_three_field";
-    std::filesystem::remove_all(directory);
-    prm.parse_input_from_string(cook(R"(
-    set Problem = elasticity
-    subsection Geometry
-      set Subdivisions = 4, 4
-    end
-    subsection Time integration
-      set Time step = 0.05
-    end
-    subsection Mesh refinement
-      set Indicator        = stress jump
-      set Coarsen fraction = 0
-      set Maximum levels   = 6
-      set Maximum cells    = 1500
-    end
-    subsection Output
-      set Directory = adaptive_cook_three_field
-      subsection VTU
-        set Interval = 0
-      end
-      subsection Probes
-        set Points = 48, 60
-      end
-    end
-    )"));
-    // The run's screen report holds iteration counts: not compared, but
-    // searched for step halvings.
-    std::string        failure;
-    std::ostringstream screen_text;
-    std::streambuf    *screen = std::cout.rdbuf(screen_text.rdbuf());
-    try
-      {
-        auto problem = problems::ProblemRegistry::instance().create(
-          "elasticity", prm, problems::RunContext{".", ""});
-        problem->setup();
-        problem->run();
-      }
-    catch (const std::exception &e)
-      {
-        failure = e.what();
-      }
-    std::cout.rdbuf(screen);
-    const std::string text = screen_text.str();
-    tissuefem_tests::check(failure.empty(),
+    const auto run
+      = tissuefem_tests::run_adaptive_cook(1500,
+                                           "adaptive_cook_three_field",
+                                           "subsection Newton solver\n"
+                                           " set Maximum iterations = 25\n"
+                                           "end\n");
+    tissuefem_tests::check(run.failure.empty() && run.time == 1,
                            "adaptive run reaches t = 1",
-                           failure);
-    tissuefem_tests::check(text.find("retrying") == std::string::npos,
+                           run.failure);
+    // Screen lines name halved steps ("retrying with dt = ...").
+    const auto halved = run.screen.find("Newton failed");
+    tissuefem_tests::check(halved == std::string::npos,
                            "adaptive run: no step halved",
-                           text.substr(text.find("Newton failed")
-                                           == std::string::npos
-                                         ? 0
-                                         : text.find("Newton failed"),
-                                       300));
-    std::ifstream probes(directory + "/probes.csv");
-    std::string   line, last;
-    while (std::getline(probes, line))
-      if (!line.empty() && std::isdigit(line[0]))
-        last = line;
-    double             values[6] = {};
-    std::istringstream fields(last);
-    for (double &value : values)
-      {
-        fields >> value;
-        fields.ignore(1);
-      }
-    const double error = std::abs(values[5] - 6.9347) / 6.9347;
-    tissuefem_tests::check(values[0] == 1 && error < 0.01,
+                           halved == std::string::npos
+                             ? ""
+                             : run.screen.substr(halved, 200));
+    const double error = std::abs(run.tip - 6.9347) / 6.9347;
+    tissuefem_tests::check(error < 0.01,
                            "adaptive run: tip deflection within 1 % of 6.9347",
-                           last);
+                           std::to_string(run.tip));
   }
 } // namespace
 
