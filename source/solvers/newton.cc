@@ -104,8 +104,10 @@ namespace tissuefem::solvers
       "is the same. 'three-field': each cell's dilatation and pressure "
       "are Newton unknowns of their own, updated linearly with the "
       "displacement and condensed per cell (the Hu-Washizu form of Simo, "
-      "Taylor and Pister 1985, as in deal.II's step-44); the line search "
-      "then asks the residual norm to decrease. 'condensed': they are "
+      "Taylor and Pister 1985, as in deal.II's step-44), and Newton "
+      "takes full steps, shortened only where a trial state cannot be "
+      "evaluated (off the constraint the energy is no merit). "
+      "'condensed': they are "
       "recomputed from the displacement at every iterate, where a nearly "
       "incompressible material turns a Newton step's second-order error "
       "in the dilatation into pressures of bulk modulus times it. "
@@ -495,7 +497,8 @@ namespace tissuefem::solvers
 
 
     /// Backtracking: accept the first step length that lowers |R| (or the
-    /// full step when the line search is off).
+    /// full step when the line search is off; with NewtonHooks::full_steps
+    /// the first that can be evaluated).
     bool
     NewtonIteration::residual_line_search(double &alpha)
     {
@@ -513,7 +516,8 @@ namespace tissuefem::solvers
               const double trial_norm = checked_l2_norm(trial_residual);
               if (std::isfinite(trial_norm)
                   && (trial_norm < norm || parameters.max_line_search_steps == 0
-                      || k == parameters.max_line_search_steps))
+                      || k == parameters.max_line_search_steps
+                      || (hooks && hooks->full_steps)))
                 {
                   if (use_energy)
                     current_energy = energy_at(trial);

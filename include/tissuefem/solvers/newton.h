@@ -95,6 +95,11 @@ namespace tissuefem::solvers
   {
     std::function<void(const VectorType &)> predict;
     std::function<void(double)>             trial;
+    /// Take full steps, shortened only where a trial state cannot be
+    /// evaluated (an inverted element, a non-finite residual): for
+    /// iterates off a constraint, where the energy is no merit and the
+    /// residual norm refuses the right steps of a stiff problem.
+    bool full_steps = false;
   };
 
   NewtonResult
