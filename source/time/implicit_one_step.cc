@@ -159,6 +159,23 @@ namespace tissuefem::time
                                            : nullptr;
     if (unknowns)
       unknowns->begin_iterations(state.time);
+    // Ended after Newton, or however the attempt ends, so that no other
+    // assembly sees them.
+    struct EndIterations
+    {
+      solid::IterationUnknowns *unknowns;
+      void
+      end(const bool converged)
+      {
+        if (unknowns)
+          unknowns->end_iterations(converged);
+        unknowns = nullptr;
+      }
+      ~EndIterations()
+      {
+        end(false);
+      }
+    } iterations{unknowns};
     const double motion = lift(c, state.time, t_new, next.u, report, unknowns);
     const bool   lifted = motion >= 0 && motion <= 0.01 * solid.length_scale();
     solid.apply_dirichlet_values(t_new, next.u);
@@ -170,9 +187,9 @@ namespace tissuefem::time
     // steps). So Newton takes full steps, as deal.II's step-44 does,
     // shortened only where a trial cannot be evaluated.
     solvers::NewtonHooks hooks;
-    hooks.full_steps = true;
     if (unknowns)
       {
+        hooks.full_steps = true;
         hooks.predict
           = [unknowns](const VectorType &du) { unknowns->predict_update(du); };
         hooks.trial = [unknowns](const double alpha) {
@@ -209,8 +226,7 @@ namespace tissuefem::time
       solid.length_scale(),
       lifted,
       unknowns ? &hooks : nullptr);
-    if (unknowns)
-      unknowns->end_iterations(result.converged);
+    iterations.end(result.converged);
     last_iterations = result.iterations;
     report.jacobian_evaluations += result.jacobians;
     // The factorization kept for the next step's lifting: this step's
