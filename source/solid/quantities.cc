@@ -1,60 +1,12 @@
-#include <deal.II/fe/fe_values.h>
 #include <deal.II/lac/lapack_full_matrix.h>
 
-#include <tissuefem/solid/mean_dilatation.h>
-#include <tissuefem/solid/nodal_dilatation.h>
+#include <tissuefem/solid/deformation_gradients.h>
 #include <tissuefem/solid/quantities.h>
 
 #include <limits>
 
 namespace tissuefem::solid
 {
-  namespace
-  {
-    /// Calls @p f(cell, q, F, JxW) at every quadrature point of the locally
-    /// owned cells; with @p materials' mean or nodal dilatation, F is their
-    /// Fbar (the plain F in cells where Fbar is not defined).
-    template <int dim, typename Callback>
-    void
-    for_each_deformation_gradient(const Discretization<dim> &discretization,
-                                  const VectorType          &u,
-                                  const Callback            &f,
-                                  const materials::MaterialSet<dim> *materials
-                                  = nullptr)
-    {
-      const bool f_bar = materials && materials->mean_dilatation_formulation();
-      const std::vector<double> theta
-        = materials && materials->nodal_dilatation_formulation()
-            ? NodalDilatation<dim>(discretization).dilatations(u)
-            : std::vector<double>();
-      FEValues<dim>                    fe_values(*discretization.mapping,
-                              *discretization.fe,
-                              discretization.cell_quadrature,
-                              update_gradients | update_JxW_values);
-      const FEValuesExtractors::Vector displacement(0);
-      std::vector<Tensor<2, dim>> grad_u(discretization.cell_quadrature.size());
-      std::vector<Tensor<2, dim>> F(grad_u.size());
-      std::vector<double>         JxW(grad_u.size());
-      for (const auto &cell :
-           discretization.dof_handler.active_cell_iterators())
-        if (cell->is_locally_owned())
-          {
-            fe_values.reinit(cell);
-            fe_values[displacement].get_function_gradients(u, grad_u);
-            for (const unsigned int q : fe_values.quadrature_point_indices())
-              {
-                F[q]   = unit_symmetric_tensor<dim>() + grad_u[q];
-                JxW[q] = fe_values.JxW(q);
-              }
-            if (f_bar)
-              apply_mean_dilatation(F, JxW.data(), F.size());
-            if (!theta.empty())
-              apply_dilatation(F, F.size(), theta[cell->active_cell_index()]);
-            for (const unsigned int q : fe_values.quadrature_point_indices())
-              f(cell, q, F[q], JxW[q]);
-          }
-    }
-  } // namespace
 
 
   template <int dim>
@@ -149,10 +101,8 @@ namespace tissuefem::solid
           if (discretization.locally_owned.is_element(
                 cell->vertex_dof_index(v, 0)))
             {
-              Point<dim> x = cell->vertex(v);
-              for (unsigned int c = 0; c < dim; ++c)
-                x[c] += u[cell->vertex_dof_index(v, c)];
-              vertices[cell->vertex_index(v)] = {cell->vertex(v), x};
+              vertices[cell->vertex_index(v)]
+                = {cell->vertex(v), deformed_vertex<dim>(cell, v, u)};
             }
     const MPI_Comm comm = parallel_tools::communicator();
     const double   n_vertices

@@ -1,6 +1,6 @@
 #include <deal.II/base/mpi.h>
-#include <deal.II/fe/fe_values.h>
 
+#include <tissuefem/solid/deformation_gradients.h>
 #include <tissuefem/solid/self_overlap.h>
 
 #include <cmath>
@@ -10,20 +10,6 @@ namespace tissuefem::solid
 {
   namespace
   {
-    /// The deformed position of vertex @p v of a cell or face.
-    template <int dim, typename Iterator>
-    Point<dim>
-    deformed_vertex(const Iterator    &object,
-                    const unsigned int v,
-                    const VectorType  &u)
-    {
-      Point<dim> x = object->vertex(v);
-      for (unsigned int c = 0; c < dim; ++c)
-        x[c] += u[object->vertex_dof_index(v, c)];
-      return x;
-    }
-
-
     /// Appends the boundary facets of the locally owned cells, deformed
     /// and oriented so that their reference normal points out of the body
     /// (2D: segments, 4 numbers; 3D: triangles, 9 numbers).
@@ -133,33 +119,30 @@ namespace tissuefem::solid
     for (const auto &part : Utilities::MPI::all_gather(comm, local_facets))
       facets.insert(facets.end(), part.begin(), part.end());
 
-    FEValues<dim>                    fe_values(*discretization.mapping,
-                            *discretization.fe,
-                            discretization.cell_quadrature,
-                            update_gradients | update_JxW_values);
-    const FEValuesExtractors::Vector displacement(0);
-    std::vector<Tensor<2, dim>> grad_u(discretization.cell_quadrature.size());
-    double                      tangled = 0, volume = 0;
+    // Per cell: its smallest det F and its volume.
+    const unsigned int n_cells
+      = dof_handler.get_triangulation().n_active_cells();
+    std::vector<double> smallest(n_cells, 1), cell_volume(n_cells, 0);
+    for_each_deformation_gradient(
+      discretization,
+      u,
+      [&](const auto &cell, unsigned int, const Tensor<2, dim> &F, double JxW) {
+        const unsigned int i = cell->active_cell_index();
+        smallest[i]          = std::min(smallest[i], determinant(F));
+        cell_volume[i] += JxW;
+      });
+    double tangled = 0, volume = 0;
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
-          fe_values.reinit(cell);
-          fe_values[displacement].get_function_gradients(u, grad_u);
-          double cell_volume = 0, smallest = 1;
-          for (const unsigned int q : fe_values.quadrature_point_indices())
-            {
-              cell_volume += fe_values.JxW(q);
-              smallest = std::min(smallest,
-                                  determinant(unit_symmetric_tensor<dim>()
-                                              + grad_u[q]));
-            }
-          Point<dim> centre;
+          const unsigned int i = cell->active_cell_index();
+          Point<dim>         centre;
           for (const unsigned int v : cell->vertex_indices())
             centre += deformed_vertex<dim>(cell, v, u) / cell->n_vertices();
-          volume += cell_volume;
-          if (smallest <= 0
+          volume += cell_volume[i];
+          if (smallest[i] <= 0
               || std::abs(winding_number(centre, facets) - 1) > 0.5)
-            tangled += cell_volume;
+            tangled += cell_volume[i];
         }
     return Utilities::MPI::sum(tangled, comm)
            / Utilities::MPI::sum(volume, comm);
