@@ -8,11 +8,9 @@ namespace tissuefem::solid
   IterationUnknowns *
   Solid<dim>::iteration_unknowns()
   {
-    // The nodal dilatation (P1 simplices) couples patches of cells and
-    // has no cell unknowns.
-    if (materials.mean_dilatation_formulation() && nodal == nullptr)
-      return this;
-    return nullptr;
+    // Only the mean dilatation element has cell unknowns (the nodal
+    // dilatation of P1 simplices is another formulation).
+    return materials.mean_dilatation_formulation() ? this : nullptr;
   }
 
 

@@ -10,6 +10,30 @@
 
 namespace tissuefem::time
 {
+  namespace
+  {
+    /// Ends a step's iteration unknowns (solid::IterationUnknowns) when
+    /// told, or else when it goes out of scope.
+    struct EndIterations
+    {
+      solid::IterationUnknowns *unknowns;
+
+      void
+      end(const bool converged)
+      {
+        if (unknowns)
+          unknowns->end_iterations(converged);
+        unknowns = nullptr;
+      }
+
+      ~EndIterations()
+      {
+        end(false);
+      }
+    };
+  } // namespace
+
+
   void
   ImplicitOneStep::initialize(Context &c, State &state)
   {
@@ -161,23 +185,9 @@ namespace tissuefem::time
       unknowns->begin_iterations(state.time);
     // Ended after Newton, or however the attempt ends, so that no other
     // assembly sees them.
-    struct EndIterations
-    {
-      solid::IterationUnknowns *unknowns;
-      void
-      end(const bool converged)
-      {
-        if (unknowns)
-          unknowns->end_iterations(converged);
-        unknowns = nullptr;
-      }
-      ~EndIterations()
-      {
-        end(false);
-      }
-    } iterations{unknowns};
-    const double motion = lift(c, state.time, t_new, next.u, report, unknowns);
-    const bool   lifted = motion >= 0 && motion <= 0.01 * solid.length_scale();
+    EndIterations iterations{unknowns};
+    const double  motion = lift(c, state.time, t_new, next.u, report, unknowns);
+    const bool    lifted = motion >= 0 && motion <= 0.01 * solid.length_scale();
     solid.apply_dirichlet_values(t_new, next.u);
     // The three-field iterates lie off the constraint theta(u) = theta~
     // until convergence, where the energy is no merit, and the residual
