@@ -51,6 +51,24 @@ namespace tissuefem_tests
   }
 
 
+  /// The scene adapting by the stress-jump indicator from 4 x 4 cells
+  /// without coarsening, in load steps of 0.05, then @p extra (later
+  /// entries override earlier ones).
+  inline std::string
+  adaptive_cook_membrane(const std::string &extra)
+  {
+    return cook_membrane("4, 4", R"(
+    subsection Time integration
+      set Time step = 0.05
+    end
+    subsection Mesh refinement
+      set Indicator        = stress jump
+      set Coarsen fraction = 0
+    end
+    )" + extra);
+  }
+
+
   /// What an adaptive run of the scene ended with.
   struct CookRun
   {
@@ -64,9 +82,9 @@ namespace tissuefem_tests
   };
 
 
-  /// Runs the elasticity problem of the scene with @p extra, adapting by
-  /// the stress-jump indicator from 4 x 4 cells (6 levels, no coarsening)
-  /// up to @p cells cells in steps of 0.05, writing into @p directory.
+  /// Runs the elasticity problem of adaptive_cook_membrane() with @p
+  /// extra, up to 6 levels and @p cells cells, writing into
+  /// @p directory.
   inline CookRun
   run_adaptive_cook(const unsigned int cells,
                     const std::string &directory,
@@ -75,16 +93,11 @@ namespace tissuefem_tests
     ParameterHandler prm;
     declare_all_parameters(prm);
     std::filesystem::remove_all(directory);
-    prm.parse_input_from_string(cook_membrane("4, 4", R"(
+    prm.parse_input_from_string(adaptive_cook_membrane(R"(
     set Problem = elasticity
-    subsection Time integration
-      set Time step = 0.05
-    end
     subsection Mesh refinement
-      set Indicator        = stress jump
-      set Coarsen fraction = 0
-      set Maximum levels   = 6
-      set Maximum cells    = )" + std::to_string(cells) + R"(
+      set Maximum levels = 6
+      set Maximum cells  = )" + std::to_string(cells) + R"(
     end
     subsection Newton solver
       set Maximum iterations = 100

@@ -52,19 +52,12 @@ using namespace tissuefem;
 
 namespace
 {
-  /// Cook's membrane on 4 x 4 cells, adapting by the stress-jump
-  /// indicator, with the condensed update.
+  /// Cook's membrane adapting by the stress-jump indicator
+  /// (cook_membrane.h), with the condensed update.
   std::string
   cook(const std::string &extra)
   {
-    return tissuefem_tests::cook_membrane("4, 4", R"(
-    subsection Time integration
-      set Time step = 0.05
-    end
-    subsection Mesh refinement
-      set Indicator        = stress jump
-      set Coarsen fraction = 0
-    end
+    return tissuefem_tests::adaptive_cook_membrane(R"(
     subsection Newton solver
       set Mean dilatation update = condensed
     end
