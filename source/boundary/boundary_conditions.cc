@@ -56,6 +56,19 @@ namespace tissuefem::boundary
         "a smaller load increment (halved), and a run that stops at a "
         "limit point reports the load factor it reached. Not with a "
         "manufactured solution.");
+      prm.declare_entry(
+        "Self contact pressure",
+        "0",
+        Patterns::Double(0),
+        "Overlap pressure p_c (Pa if SI; 0: off): where the deformed body "
+        "overlaps itself, its boundary facets inside the body elsewhere are "
+        "pushed back into their own part with the pressure p_c. This is "
+        "the gradient of p_c times the volume the body covers more than "
+        "once (solid/self_contact.h), so it resolves overlaps that are "
+        "already there (a tangled crushed start, a fold-over) as well as "
+        "new ones. Frozen over each step (taken at the step's start); "
+        "backward Euler and quasistatic runs only. A few times the shear "
+        "modulus untangles the crushed starts of the tests (doc/tests.md).");
       prm.declare_entry("Initial displacement",
                         "0",
                         Patterns::Anything(),
@@ -73,13 +86,14 @@ namespace tissuefem::boundary
   BoundaryParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Boundary conditions");
-    dirichlet            = prm.get("Dirichlet");
-    neumann              = prm.get("Neumann");
-    body_force           = prm.get("Body force");
-    gravity              = prm.get("Gravity");
-    initial_displacement = prm.get("Initial displacement");
-    initial_velocity     = prm.get("Initial velocity");
-    load_factor          = prm.get("Load factor");
+    dirichlet             = prm.get("Dirichlet");
+    neumann               = prm.get("Neumann");
+    body_force            = prm.get("Body force");
+    gravity               = prm.get("Gravity");
+    initial_displacement  = prm.get("Initial displacement");
+    initial_velocity      = prm.get("Initial velocity");
+    load_factor           = prm.get("Load factor");
+    self_contact_pressure = prm.get_double("Self contact pressure");
     prm.leave_subsection();
   }
 
@@ -164,8 +178,9 @@ namespace tissuefem::boundary
           {id, make_function<dim>(expressions, dim, neumann_name)});
         loads_name_time = loads_name_time || names_time(expressions);
       }
-    factor_names_time = names_time(parameters.load_factor);
-    loads_name_time   = loads_name_time || names_time(parameters.body_force)
+    self_contact_pressure = parameters.self_contact_pressure;
+    factor_names_time     = names_time(parameters.load_factor);
+    loads_name_time       = loads_name_time || names_time(parameters.body_force)
                       || factor_names_time;
     const std::string load_factor_name = "Boundary conditions/Load factor";
     for (const char *space : {"x", "y", "z"})

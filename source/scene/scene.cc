@@ -56,6 +56,19 @@ namespace tissuefem
     boundary_conditions = std::make_unique<boundary::BoundaryConditions<dim>>(
       boundary_parameters);
     boundary_conditions->check_boundary_ids(triangulation);
+    {
+      // Only these integrators take the frozen contact force
+      // (Operators::begin_step()); others would ignore it unseen.
+      time::TimeParameters time_parameters;
+      time_parameters.parse_parameters(prm);
+      require(boundary_parameters.self_contact_pressure == 0
+                || time_parameters.integrator == "backward Euler"
+                || time_parameters.integrator == "quasistatic",
+              "Boundary conditions/Self contact pressure",
+              "needs Time integration/Integrator = backward Euler or "
+              "quasistatic (not '"
+                + time_parameters.integrator + "')");
+    }
 
     // Every registered kind of tool the file asks for.
     for (const auto &[name, entry] : tool::ToolRegistry<dim>::instance().all())

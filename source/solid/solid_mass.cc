@@ -108,6 +108,8 @@ namespace tissuefem::solid
       discretization.hanging_node_constraints.distribute(x);
     external_force(time, force);
     energy -= force * x;
+    if (step_contact_force.size() == x.size())
+      energy -= step_contact_force * x;
     if (mass_coefficient != 0)
       {
         // As the residual's inertial term M w, w = c (u - u_tilde).

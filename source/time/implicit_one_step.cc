@@ -117,7 +117,6 @@ namespace tissuefem::time
                         StepReport               &report,
                         solid::IterationUnknowns *unknowns)
   {
-    auto &solid = context->solid;
     // The lifting's Jacobian, factorized at the guess, serves Newton's
     // first iterations ('Jacobian reuse') when the lifting moved the body
     // little (below 1 % of its size: a smooth step). After a larger motion
@@ -176,6 +175,7 @@ namespace tissuefem::time
     if (next.u.size() != state.u.size())
       solid.initialize_vector(next.u);
     predict(state, h, u_tilde, next.u);
+    solid.begin_step(state.u);
     // The three-field element's cell unknowns ('Newton solver/Mean
     // dilatation update'): Newton updates them with u within this step.
     solid::IterationUnknowns *unknowns = context->newton.three_field_dilatation

@@ -27,6 +27,7 @@ namespace tissuefem::boundary
 
     std::string dirichlet, neumann, body_force, gravity, initial_displacement,
       initial_velocity, load_factor;
+    double self_contact_pressure = 0;
   };
 
   template <int dim>
@@ -89,7 +90,9 @@ namespace tissuefem::boundary
     /// Whether every body force expression is the literal "0".
     bool body_force_is_zero;
     /// Acceleration of gravity (m/s^2 if SI); multiplied by rho_0.
-    Tensor<1, dim>                 gravity;
+    Tensor<1, dim> gravity;
+    /// 'Self contact pressure' (Pa if SI; 0: no self contact).
+    double                         self_contact_pressure = 0;
     std::unique_ptr<Function<dim>> initial_displacement;
     std::unique_ptr<Function<dim>> initial_velocity;
 

@@ -195,6 +195,18 @@ namespace tissuefem::solid
     virtual std::optional<double>
     load_factor(const double time) const = 0;
 
+    /**
+     * Takes the loads that depend on the state (self contact,
+     * 'Boundary conditions/Self contact pressure') from @p u, the start of
+     * the implicit step about to be taken: implicit_residual() and
+     * implicit_energy() then hold them as dead loads over the step.
+     */
+    virtual void
+    begin_step(const VectorType &u)
+    {
+      (void)u;
+    }
+
     /// Unknowns Newton must update alongside u (the three-field mean
     /// dilatation element's cell dilatations and pressures); null if the
     /// operators have none.

@@ -222,6 +222,10 @@ namespace tissuefem::solid
       return carry;
     }
 
+    /// The self-contact force (self_contact.h) at @p u.
+    void
+    begin_step(const VectorType &u) override;
+
     /// The three-field form of the mean dilatation element
     /// (ThreeFieldDilatation) where the formulation is 'mean dilatation'.
     IterationUnknowns *
@@ -510,6 +514,9 @@ namespace tissuefem::solid
     bool body_force_present;
     /// Ghosted copies of the arguments, reused between calls.
     VectorType ghosted_u, ghosted_w;
+    /// The self-contact force of the step begun last (begin_step()), as
+    /// assembled on the constrained rows; empty without self contact.
+    VectorType step_contact_force;
 
     /**
      * Direct access, computed once per mesh: for each cached cell, the

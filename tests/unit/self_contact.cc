@@ -1,0 +1,158 @@
+// The self-contact force (solid/self_contact.h), f = -p_c dV_o/dx with V_o
+// the volume the deformed body covers more than once or negatively, checked
+// by virtual work against closed forms on quadrilaterals, triangles,
+// hexahedra and tetrahedra. Under a uniform scaling x -> (1 + e) x about
+// the origin every volume grows by (1 + e)^dim, so
+//   sum_i f_i . x_i = -p_c dV_o/de = -p_c dim V_o.
+// - Identity and a rigid quarter turn: V_o = 0, so f = 0 (every facet sees
+//   winding number 1/2).
+// - Mirror image (x -> -x): the body is covered -1 times, V_o = its volume
+//   (1, or 0.1 in 3D): the identity holds to round-off (straight facets),
+//   and the forces sum to zero (a closed boundary's area vectors do).
+// - The unit square (3D: times 0.1) wound one and a half times round a
+//   spiral, X -> r (cos 3 pi x, sin 3 pi x), r = 1 - 0.1 y + 0.1 x (3D:
+//   z -> z + 0.075 x), on 300 x 3 (x 2) cells: the layers x and x + 2/3
+//   overlap for angles in (0, pi) over a band one cell wide, 1/30 (3D: and
+//   one cell high, 0.05), so V_o = pi / 30 (3D: times 0.05), times
+//   sin(d) / d for the chords of the arcs, d = 3 pi / 300. The band's
+//   edges follow cell faces, so every boundary facet lies wholly in or out
+//   of it and the identity holds to round-off (where the band cuts
+//   facets, their centres decide: an O(h) error).
+
+#include <deal.II/base/function_parser.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include <tissuefem/base/application.h>
+#include <tissuefem/solid/self_contact.h>
+
+#include "../tests.h"
+#include "solid_scene.h"
+
+#include <iostream>
+#include <sstream>
+#include <string>
+
+using namespace dealii;
+using namespace tissuefem;
+
+namespace
+{
+  constexpr double pressure = 7.;
+
+  /// The contact force's virtual work under scaling over -p_c dim V_o
+  /// (1 where the force is the gradient), and its largest sum over a
+  /// component over p_c times the deformed boundary's size.
+  template <int dim>
+  std::pair<double, double>
+  virtual_work(const std::string &cells,
+               const std::string &displacement,
+               const unsigned int n_x,
+               const double       overlap_volume)
+  {
+    ParameterHandler prm;
+    declare_all_parameters(prm);
+    const std::string upper = dim == 2 ? "1, 1" : "1, 1, 0.1";
+    const std::string n = std::to_string(n_x) + (dim == 2 ? ", 3" : ", 3, 2");
+    prm.parse_input_from_string("set Dimension = " + std::to_string(dim)
+                                + "\nsubsection Geometry\n set Cell type = "
+                                + cells + "\n set Upper corner = " + upper
+                                + "\n set Subdivisions = " + n
+                                + "\nend\nsubsection Boundary conditions\n"
+                                  " set Initial displacement = "
+                                + displacement + "\nend\n");
+    tissuefem_tests::SolidScene<dim> scene(prm);
+    const auto                      &discretization = *scene.discretization;
+    VectorType                       u, v, ghosted, force, x;
+    scene.solid->initial_state(u, v);
+    discretization.initialize_vector(ghosted, true);
+    ghosted = u;
+    AffineConstraints<double> none;
+    none.close();
+    discretization.initialize_assembly_vector(force);
+    solid::add_overlap_force(discretization, ghosted, pressure, none, force);
+    // Vector fields at the dofs: x = X + u, and the unit vectors e_c.
+    const auto field = [&](const std::string &expressions) {
+      VectorType          result;
+      FunctionParser<dim> f(dim);
+      f.initialize(dim == 2 ? "x, y" : "x, y, z", expressions, {});
+      discretization.initialize_vector(result);
+      VectorTools::interpolate(*discretization.mapping,
+                               discretization.dof_handler,
+                               f,
+                               result);
+      return result;
+    };
+    x = field(dim == 2 ? "x; y" : "x; y; z");
+    x += u;
+    Tensor<1, dim> sum;
+    for (unsigned int c = 0; c < dim; ++c)
+      {
+        std::string e;
+        for (unsigned int d = 0; d < dim; ++d)
+          e += std::string(d ? "; " : "") + (c == d ? "1" : "0");
+        sum[c] = force * field(e);
+      }
+    const double work = force * x;
+    const double size = dim == 2 ? 4 : 2 * (1 + 0.1 + 0.1);
+    return {overlap_volume > 0 ? work / (-pressure * dim * overlap_volume)
+                               : work / pressure,
+            Utilities::MPI::max(sum.norm(), MPI_COMM_WORLD)
+              / (pressure * size)};
+  }
+
+
+  template <int dim>
+  void
+  check_cells(const std::string &cells)
+  {
+    const std::string z    = dim == 3 ? "; 0" : "";
+    const std::string name = std::to_string(dim) + "D " + cells;
+    for (const std::string &rigid : {"0; 0" + z, "-y - x; x - y" + z})
+      {
+        const auto [work, sum] = virtual_work<dim>(cells, rigid, 30, 0);
+        tissuefem_tests::check_small(std::abs(work) + sum,
+                                     1e-12,
+                                     name + ", rigid motion: no force");
+      }
+    const double volume = dim == 2 ? 1 : 0.1;
+    const auto [mirror, sum]
+      = virtual_work<dim>(cells, "-2*x; 0" + z, 30, volume);
+    tissuefem_tests::check_small(mirror - 1,
+                                 1e-12,
+                                 name + ", mirror image: work over -p dim V");
+    tissuefem_tests::check_small(sum, 1e-12, name + ", mirror image: sum");
+    const std::string spiral
+      = "(1 - 0.1*y + 0.1*x)*cos(3*pi*x) - x; "
+        "(1 - 0.1*y + 0.1*x)*sin(3*pi*x) - y"
+        + (dim == 3 ? std::string("; 0.075*x") : std::string());
+    // The straight facets between vertices d = 3 pi / 300 apart cut the
+    // band's arcs to chords: sin(d) / d of the area.
+    const double d    = 3 * M_PI / 300;
+    const double band = M_PI / 30 * (dim == 3 ? 0.05 : 1) * std::sin(d) / d;
+    tissuefem_tests::check_small(
+      virtual_work<dim>(cells, spiral, 300, band).first - 1,
+      1e-9,
+      name + ", spiral: work over -p dim V_o");
+  }
+} // namespace
+
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  // Every figure is global (dot products of distributed vectors): one
+  // process writes.
+  std::ostringstream muted;
+  auto              *screen = std::cout.rdbuf();
+  if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) > 0)
+    std::cout.rdbuf(muted.rdbuf());
+  check_cells<2>("hypercube");
+  check_cells<2>("simplex");
+  check_cells<3>("hypercube");
+  check_cells<3>("simplex");
+  std::cout.rdbuf(screen);
+  return tissuefem_tests::exit_status();
+}
