@@ -13,20 +13,29 @@
 # 0.49 plain P1 loses another half of its displacement to locking, which
 # the nodal dilatation ('Formulation = nodal dilatation') gives back.
 #
+# Refined meshes (measured 2026-11-25, doc/studies.md): with
+# REFINEMENTS=1 or 2 every tetrahedron is split into 8 (4,768 and 38,144
+# tetrahedra), to see where each element converges; ELEMENTS picks the
+# elements (default all four; the ratio column needs P2-P0-F-bar).
+#
 # Usage (from the repository top, after building):
 #   bash parameters/studies/linear_tetrahedra.sh [path/to/tissuefem]
+#   REFINEMENTS=2 ELEMENTS="P1 P1-nodal" bash parameters/studies/linear_tetrahedra.sh
 set -euo pipefail
 exe=$(realpath "${1:-build/tissuefem}")
 prm=$(realpath "$(dirname "$0")/../liver_incompressible.prm")
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
+refinements=${REFINEMENTS:-0}
+read -r -a elements <<< "${ELEMENTS:-P2-P0-F-bar P1 P1-nodal P2}"
 
 # run NAME NU: prints "unknowns |u| seconds".
 run() {
   local name=$1 nu=$2
   local args=(--set "Materials/Poisson's ratio=$nu" --set "Time integration/Integrator=quasistatic"
               --set "Time integration/Time step=0.25" --set "Boundary conditions/Load factor=t"
-              --set "Output/VTU/Interval=0" --set "Output/Directory=$work/$name-$nu")
+              --set "Output/VTU/Interval=0" --set "Output/Directory=$work/$name-$nu"
+              --set "Geometry/Global refinements=$refinements")
   case $name in
     P1) args+=(--set "Finite element/Polynomial degree=1" --set "Materials/Formulation=displacement") ;;
     P1-nodal) args+=(--set "Finite element/Polynomial degree=1" --set "Materials/Formulation=nodal dilatation") ;;
@@ -47,15 +56,16 @@ run() {
 
 for nu in 0.49 0.3; do
   echo
-  echo "SOFA liver at rest under gravity, nu = $nu: lower lobe |u| (length units)"
+  echo "SOFA liver at rest under gravity, nu = $nu, $refinements global refinements: lower lobe |u| (length units)"
   printf '%-12s %9s %10s %12s %9s %12s\n' element unknowns '|u|' 'vs P2-P0' 'wall (s)' 'vs P1 wall'
   declare -A result=()
-  for name in P2-P0-F-bar P1 P1-nodal P2; do
+  for name in "${elements[@]}"; do
     result[$name]=$(run "$name" "$nu")
   done
-  read -r _ reference _ <<< "${result[P2-P0-F-bar]}"
-  read -r _ _ p1_wall <<< "${result[P1]}"
+  read -r _ reference _ <<< "${result[P2-P0-F-bar]:-x nan x}"
+  read -r _ _ p1_wall <<< "${result[P1]:-x x nan}"
   for name in P1 P1-nodal P2 P2-P0-F-bar; do
+    [ -n "${result[$name]:-}" ] || continue
     read -r n u wall <<< "${result[$name]}"
     awk -v name="$name" -v n="$n" -v u="$u" -v r="$reference" -v w="$wall" -v w1="$p1_wall" \
       'BEGIN { printf "%-12s %9s %10.4f %12.3f %9.2f %12.2f\n", name, n, u, u / r, w, w / w1 }'
