@@ -37,6 +37,12 @@ namespace tissuefem::solid
    * each facet's force goes to its vertices in equal parts. Every process
    * gathers the boundary facets of the whole mesh; the cost is (boundary
    * facets)^2 / processes per call.
+   *
+   * @p u: ghosted displacement; @p pressure: p_c (Pa if SI); the force is
+   * added to @p force, an assembly vector (Discretization::
+   * initialize_assembly_vector()), through @p constraints (constrained rows
+   * get nothing, hanging-node shares go to their parents); every process
+   * calls.
    */
   template <int dim>
   void
