@@ -3,11 +3,10 @@
 #include <deal.II/base/numbers.h>
 
 #include <tissuefem/base/parallel.h>
-#include <tissuefem/solid/deformation_gradients.h>
 #include <tissuefem/solid/discretization.h>
 
-#include <algorithm>
 #include <array>
+#include <utility>
 #include <vector>
 
 namespace tissuefem::solid
@@ -53,25 +52,23 @@ namespace tissuefem::solid
             {
               // Triangles of the face (a quadrilateral's vertices are
               // numbered lexicographically: 0 1 3 and 0 3 2 go round).
-              std::vector<std::vector<unsigned int>> pieces;
-              if (dim == 2)
-                pieces = {{0, 1}};
-              else if (face->n_vertices() == 3)
-                pieces = {{0, 1, 2}};
-              else
-                pieces = {{0, 1, 3}, {0, 3, 2}};
-              const Tensor<1, dim> out = face->center() - cell->center();
-              for (auto &piece : pieces)
+              static constexpr unsigned int quadrilateral[2][3]
+                = {{0, 1, 3}, {0, 3, 2}};
+              const bool           split = dim == 3 && face->n_vertices() == 4;
+              const Tensor<1, dim> out   = face->center() - cell->center();
+              for (unsigned int p = 0; p < (split ? 2 : 1); ++p)
                 {
-                  // Orient by the reference normal.
-                  std::array<Point<dim>, dim> X;
+                  std::array<unsigned int, dim> piece;
+                  std::array<Point<dim>, dim>   X;
                   for (unsigned int k = 0; k < dim; ++k)
-                    X[k] = face->vertex(piece[k]);
+                    {
+                      piece[k] = split ? quadrilateral[p][k] : k;
+                      X[k]     = face->vertex(piece[k]);
+                    }
+                  // Orient by the reference normal.
                   if (oriented_area<dim>(X) * out < 0)
                     std::swap(piece[0], piece[1]);
-                  std::array<unsigned int, dim> oriented;
-                  std::copy(piece.begin(), piece.end(), oriented.begin());
-                  f(face, oriented);
+                  f(face, piece);
                 }
             }
   }
