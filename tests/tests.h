@@ -6,10 +6,13 @@
 
 #include <deal.II/base/tensor.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -155,6 +158,37 @@ namespace tissuefem_tests
     check(std::abs(value) <= tolerance,
           name + " (below " + bound.str() + ")",
           "value " + std::to_string(value));
+  }
+
+  /**
+   * Raises @p worst to @p x, NaN if either is NaN: std::max(worst, x)
+   * returns worst when x is NaN, so a NaN error would read as zero and its
+   * check print "ok". With the environment variable
+   * TISSUEFEM_TESTS_FEED_NAN set, the first value a program passes here is
+   * replaced by NaN: ctest's "<test>.nan" runs do so and must fail, which
+   * shows that each test's checks see a NaN.
+   */
+  inline void
+  raise(double &worst, double x)
+  {
+    static bool fed = false;
+    if (!fed && std::getenv("TISSUEFEM_TESTS_FEED_NAN") != nullptr)
+      {
+        fed = true;
+        x   = std::numeric_limits<double>::quiet_NaN();
+      }
+    worst = std::isnan(worst) || std::isnan(x)
+              ? std::numeric_limits<double>::quiet_NaN()
+              : std::max(worst, x);
+  }
+
+  /// Lowers @p least to @p x, NaN if either is NaN (as raise()).
+  inline void
+  lower(double &least, const double x)
+  {
+    double negated = -least;
+    raise(negated, -x);
+    least = -negated;
   }
 
   /// The exit status: non-zero if any check failed.

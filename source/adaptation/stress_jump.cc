@@ -64,7 +64,7 @@ namespace tissuefem::adaptation
             c.traction->set_time(time);
             tractions[c.id] = c.traction.get();
           }
-        load_factor = bc.load_factor_at(time);
+        load_factor = bc.load_factor_in_force(time);
       }
 
       /// sum_F h_F int_F |r|^2 over the faces of @p cell, with r the

@@ -45,17 +45,23 @@ namespace tissuefem::boundary
                         "Only the first Dimension components are read.");
       prm.declare_entry(
         "Load factor",
-        "1",
+        "automatic",
         Patterns::Anything(),
         "lambda(t), a dimensionless function of t that multiplies every "
         "load: gravity, body force and tractions. Prescribed displacements "
-        "are not scaled: their expressions name t themselves. '1' applies "
-        "the loads as given at every time; 'min(t, 1)' ramps them up over "
-        "the first time unit. In a quasistatic run the load then grows "
-        "with the steps, so that a step Newton cannot take is retried with "
-        "a smaller load increment (halved), and a run that stops at a "
-        "limit point reports the load factor it reached. Not with a "
-        "manufactured solution.");
+        "are not scaled: their expressions name t themselves. 'automatic' "
+        "(the default) is t / End time in a quasistatic run, so that the "
+        "loads grow from zero to their full size at the end of the run, as "
+        "Abaqus's static steps and FEBio's load curves do (each step then "
+        "starts near the last equilibrium), and 1 in a dynamic run or with "
+        "a manufactured solution; the run's first lines say which factor "
+        "is in force. '1' applies the loads as given at every time; "
+        "'min(t, 1)' ramps them up over the first time unit. Whatever the "
+        "factor, a quasistatic step that Newton cannot take is retried "
+        "from the last equilibrium with half its load increment (load "
+        "continuation, down to 'Time integration/Maximum step halvings'), "
+        "and a run that stops reports the load factor it reached. A "
+        "manufactured solution needs 1 (or automatic).");
       prm.declare_entry(
         "Self contact pressure",
         "0",
@@ -150,6 +156,29 @@ namespace tissuefem::boundary
   } // namespace
 
 
+  void
+  BoundaryParameters::resolve_load_factor(const bool         quasistatic,
+                                          const std::string &end_time)
+  {
+    if (Utilities::trim(load_factor) != "automatic")
+      return;
+    // Loads whose own expressions name t are ramped already: a factor
+    // t / T on top would make their ramp quadratic.
+    if (quasistatic && !names_time(neumann) && !names_time(body_force))
+      {
+        load_factor      = "t / (" + Utilities::trim(end_time) + ")";
+        load_factor_note = "automatic: a quasistatic run ramps its loads";
+      }
+    else
+      {
+        load_factor      = "1";
+        load_factor_note = quasistatic ? "automatic: the loads' own "
+                                         "expressions name t"
+                                       : "automatic: a dynamic run";
+      }
+  }
+
+
   template <int dim>
   BoundaryConditions<dim>::BoundaryConditions(
     const BoundaryParameters &parameters)
@@ -179,12 +208,18 @@ namespace tissuefem::boundary
       {
         neumann.push_back(
           {id, make_function<dim>(expressions, dim, neumann_name)});
-        loads_name_time = loads_name_time || names_time(expressions);
+        loads_name_time_ = loads_name_time_ || names_time(expressions);
       }
     self_contact_pressure = parameters.self_contact_pressure;
-    factor_names_time     = names_time(parameters.load_factor);
-    loads_name_time       = loads_name_time || names_time(parameters.body_force)
-                      || factor_names_time;
+    factor_expression     = Utilities::trim(parameters.load_factor);
+    factor_note           = parameters.load_factor_note;
+    require(factor_expression != "automatic",
+            "Boundary conditions/Load factor",
+            "'automatic' must be resolved by the scene "
+            "(BoundaryParameters::resolve_load_factor)");
+    factor_names_time = names_time(parameters.load_factor);
+    loads_name_time_  = loads_name_time_ || names_time(parameters.body_force)
+                       || factor_names_time;
     const std::string load_factor_name = "Boundary conditions/Load factor";
     for (const char *space : {"x", "y", "z"})
       require(!names_variable(parameters.load_factor, space),
@@ -227,7 +262,15 @@ namespace tissuefem::boundary
     for (auto &n : neumann)
       n.traction->set_time(time);
     body_force->set_time(time);
-    load_factor = load_factor_at(time);
+    load_factor = load_factor_in_force(time);
+  }
+
+
+  template <int dim>
+  double
+  BoundaryConditions<dim>::load_factor_in_force(const double time) const
+  {
+    return held_load_factor ? *held_load_factor : load_factor_at(time);
   }
 
 
@@ -237,6 +280,18 @@ namespace tissuefem::boundary
   {
     load_factor_function->set_time(time);
     return load_factor_function->value(Point<dim>());
+  }
+
+
+  template <int dim>
+  std::string
+  BoundaryConditions<dim>::describe_load_factor() const
+  {
+    std::string text = "load factor lambda(t) = " + factor_expression
+                       + " (scales gravity, body force and tractions";
+    if (!factor_note.empty())
+      text += "; " + factor_note;
+    return text + ")";
   }
 
 
@@ -252,10 +307,18 @@ namespace tissuefem::boundary
   bool
   BoundaryConditions<dim>::changes_with_time() const
   {
-    return loads_name_time
+    return loads_name_time_
            || std::any_of(dirichlet.begin(),
                           dirichlet.end(),
                           [](const Dirichlet &d) { return d.time_dependent; });
+  }
+
+
+  template <int dim>
+  bool
+  BoundaryConditions<dim>::has_loads() const
+  {
+    return gravity.norm() > 0 || !body_force_is_zero || !neumann.empty();
   }
 
 

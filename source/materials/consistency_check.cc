@@ -1,6 +1,7 @@
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
 
+#include <tissuefem/base/nan_aware.h>
 #include <tissuefem/materials/consistency_check.h>
 
 #include <cmath>
@@ -57,7 +58,7 @@ namespace tissuefem::materials
       double m = 0;
       for (unsigned int i = 0; i < dim; ++i)
         for (unsigned int j = 0; j < dim; ++j)
-          m = std::max(m, std::abs(T[i][j]));
+          m = max_keeping_nan(m, std::abs(T[i][j]));
       return m;
     }
   } // namespace
@@ -107,16 +108,17 @@ namespace tissuefem::materials
                                  - material.energy_density(Fm, s.fibre))
                                 / (2 * h);
             report.stress_vs_energy
-              = std::max(report.stress_vs_energy,
-                         std::abs(dpsi - s.P[k][l]) / s.scale);
+              = max_keeping_nan(report.stress_vs_energy,
+                                std::abs(dpsi - s.P[k][l]) / s.scale);
             const Tensor<2, dim> dP
               = (material.stress(Fp, s.fibre) - material.stress(Fm, s.fibre))
                 / (2 * h);
             for (unsigned int i = 0; i < dim; ++i)
               for (unsigned int j = 0; j < dim; ++j)
                 report.tangent_vs_stress
-                  = std::max(report.tangent_vs_stress,
-                             std::abs(dP[i][j] - s.A[i][j][k][l]) / s.scale);
+                  = max_keeping_nan(report.tangent_vs_stress,
+                                    std::abs(dP[i][j] - s.A[i][j][k][l])
+                                      / s.scale);
           }
     }
 
@@ -134,21 +136,19 @@ namespace tissuefem::materials
           Tensor<2, dim> P2;
           Tensor<4, dim> A2;
           material.stress_and_tangent(s.F, s.fibre, P2, A2, method);
-          report.method_spread
-            = std::max(report.method_spread, max_abs(P2 - s.P) / s.scale);
+          report.method_spread = max_keeping_nan(report.method_spread,
+                                                 max_abs(P2 - s.P) / s.scale);
           for (unsigned int i = 0; i < dim; ++i)
             for (unsigned int j = 0; j < dim; ++j)
               for (unsigned int k = 0; k < dim; ++k)
                 for (unsigned int l = 0; l < dim; ++l)
                   {
-                    report.method_spread
-                      = std::max(report.method_spread,
-                                 std::abs(A2[i][j][k][l] - s.A[i][j][k][l])
-                                   / s.scale);
-                    report.major_asymmetry
-                      = std::max(report.major_asymmetry,
-                                 std::abs(s.A[i][j][k][l] - s.A[k][l][i][j])
-                                   / s.scale);
+                    report.method_spread = max_keeping_nan(
+                      report.method_spread,
+                      std::abs(A2[i][j][k][l] - s.A[i][j][k][l]) / s.scale);
+                    report.major_asymmetry = max_keeping_nan(
+                      report.major_asymmetry,
+                      std::abs(s.A[i][j][k][l] - s.A[k][l][i][j]) / s.scale);
                   }
         }
     }
@@ -202,7 +202,7 @@ namespace tissuefem::materials
       const double d_stress
         = max_abs(material.stress(Q * s.F, s.fibre) - Q * s.P) / s.scale;
       report.frame_indifference
-        = std::max({report.frame_indifference, d_energy, d_stress});
+        = max_keeping_nan({report.frame_indifference, d_energy, d_stress});
     }
   } // namespace
 

@@ -1,6 +1,5 @@
-#include <deal.II/grid/grid_tools.h>
-
 #include <tissuefem/base/input_error.h>
+#include <tissuefem/geometry/point_locator.h>
 #include <tissuefem/output/probes.h>
 
 #include <sstream>
@@ -15,27 +14,23 @@ namespace tissuefem::output
       : locations(points)
       , dof_handler(dof_handler)
   {
+    const geometry::PointLocator<dim> locator(mapping,
+                                              dof_handler.get_triangulation());
     for (const auto &p : points)
       {
-        std::ostringstream where;
-        where << "(" << p << ")";
-        try
+        const auto found = locator.locate(p);
+        if (!found)
           {
-            const auto found
-              = GridTools::find_active_cell_around_point(mapping,
-                                                         dof_handler,
-                                                         p);
-            require(found.first.state() == IteratorState::valid,
-                    parameter,
-                    "point " + where.str() + " lies outside the mesh");
-            cells.push_back(found.first);
-            reference_points.push_back(found.second);
-          }
-        catch (const ExceptionBase &)
-          {
+            std::ostringstream where;
+            where << "(" << p << ")";
             throw InputError("Parameter '" + parameter + "': point "
                              + where.str() + " lies outside the mesh");
           }
+        cells.emplace_back(&dof_handler.get_triangulation(),
+                           found->cell->level(),
+                           found->cell->index(),
+                           &dof_handler);
+        reference_points.push_back(found->reference);
       }
   }
 

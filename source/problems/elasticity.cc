@@ -492,9 +492,11 @@ namespace tissuefem::problems
     screen << "tissuefem: " << dim << "D elasticity, " << scene->describe()
            << ", integrator '" << time_parameters.integrator
            << "', linear solver '" << linear_solver_parameters.type << "'\n"
-           << geometry::describe_boundary_ids(scene->triangulation)
-           << std::endl;
-    TimerOutput timer(screen, TimerOutput::summary, TimerOutput::wall_times);
+           << geometry::describe_boundary_ids(scene->triangulation) << '\n'
+           << scene->boundary_conditions->describe_load_factor() << std::endl;
+    // The table is printed at the end of a finished run, before the line
+    // that says where the files went.
+    TimerOutput timer(screen, TimerOutput::never, TimerOutput::wall_times);
     if (step == 0)
       {
         summary->line("cells "
@@ -540,6 +542,9 @@ namespace tissuefem::problems
                             std::chrono::steady_clock::now() - run_start)
                             .count();
     finish(state, totals);
+    timer.print_summary();
+    screen << "output in " << output_parameters.directory
+           << "/ (run.txt: the run's figures, with units)" << std::endl;
   }
 
   template class Elasticity<1>;

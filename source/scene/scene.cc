@@ -53,6 +53,17 @@ namespace tissuefem
 
     boundary::BoundaryParameters boundary_parameters;
     boundary_parameters.parse_parameters(prm);
+    {
+      // 'Load factor = automatic': the loads of a quasistatic run ramp
+      // over it (a manufactured solution's are exact as they are).
+      boundary::ManufacturedParameters manufactured_parameters;
+      manufactured_parameters.parse_parameters(prm);
+      prm.enter_subsection("Time integration");
+      const std::string end_time = prm.get("End time");
+      prm.leave_subsection();
+      boundary_parameters.resolve_load_factor(
+        !integrates_in_time(prm) && !manufactured_parameters.enabled, end_time);
+    }
     boundary_conditions = std::make_unique<boundary::BoundaryConditions<dim>>(
       boundary_parameters);
     boundary_conditions->check_boundary_ids(triangulation);

@@ -1,5 +1,6 @@
 #include <deal.II/lac/lapack_full_matrix.h>
 
+#include <tissuefem/base/nan_aware.h>
 #include <tissuefem/solid/deformation_gradients.h>
 #include <tissuefem/solid/quantities.h>
 
@@ -141,11 +142,12 @@ namespace tissuefem::solid
     const Tensor<2, dim> R        = Ut * D * Vt;
     double               distance = 0;
     for (const auto &[index, pair] : vertices)
-      distance = std::max(distance,
+      distance
+        = max_keeping_nan(distance,
                           (x_mean + R * (Tensor<1, dim>(pair.first) - X_mean)
                            - Tensor<1, dim>(pair.second))
                             .norm());
-    return Utilities::MPI::max(distance, comm);
+    return mpi_max_keeping_nan(distance, comm);
   }
 
 #define TISSUEFEM_INSTANTIATE(dim)                                           \

@@ -221,6 +221,33 @@ namespace tissuefem::solid
   }
 
 
+  template <int dim>
+  double
+  Solid<dim>::load_factor_at(const double time) const
+  {
+    return boundary_conditions.load_factor_at(time);
+  }
+
+
+  template <int dim>
+  Operators::LoadHistory
+  Solid<dim>::load_history() const
+  {
+    if (!boundary_conditions.has_loads())
+      return LoadHistory::none;
+    return boundary_conditions.loads_name_time() ? LoadHistory::changing
+                                                 : LoadHistory::constant;
+  }
+
+
+  template <int dim>
+  void
+  Solid<dim>::hold_load_factor(const std::optional<double> factor)
+  {
+    boundary_conditions.held_load_factor = factor;
+  }
+
+
   // The class is instantiated in solid.cc; these members here.
 #define TISSUEFEM_INSTANTIATE(dim)                                               \
   template void Solid<dim>::internal_force(const VectorType &, VectorType &);    \
@@ -244,7 +271,10 @@ namespace tissuefem::solid
                                                       const VectorType &,      \
                                                       double);                 \
   template bool                  Solid<dim>::changes_with_time() const;          \
-  template std::optional<double> Solid<dim>::load_factor(const double) const;
+  template std::optional<double> Solid<dim>::load_factor(const double) const;    \
+  template double                Solid<dim>::load_factor_at(const double) const; \
+  template Operators::LoadHistory Solid<dim>::load_history() const;              \
+  template void Solid<dim>::hold_load_factor(const std::optional<double>);
   TISSUEFEM_INSTANTIATE(1)
   TISSUEFEM_INSTANTIATE(2)
   TISSUEFEM_INSTANTIATE(3)

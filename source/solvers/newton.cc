@@ -58,6 +58,19 @@ namespace tissuefem::solvers
       "the residual norm where the operator has no energy or the update is "
       "no descent direction.");
     prm.declare_entry(
+      "Globalization",
+      "line search",
+      Patterns::Selection("line search|trust region"),
+      "How Newton's steps are kept from diverging. 'line search': "
+      "backtracking along the Newton update (see 'Line search'). 'trust "
+      "region': Powell's dogleg in a region whose radius follows how well "
+      "the quadratic model predicted the energy's decrease (Nocedal and "
+      "Wright 2006, ch 4; solvers/trust_region.h); where the Jacobian is "
+      "indefinite (buckling, snap-through) it descends along the gradient "
+      "instead of searching on the residual norm, and needs a new "
+      "Jacobian every iteration. Backward Euler and quasistatic steps of "
+      "elements without cell unknowns only (others use the line search).");
+    prm.declare_entry(
       "Lift boundary increments",
       "true",
       Patterns::Bool(),
@@ -157,6 +170,7 @@ namespace tissuefem::solvers
     update_tolerance            = prm.get_double("Update tolerance");
     max_line_search_steps       = prm.get_integer("Line search steps");
     energy_line_search          = prm.get("Line search") == "energy";
+    trust_region                = prm.get("Globalization") == "trust region";
     verbose                     = prm.get_bool("Verbose");
     lift_boundary_increments    = prm.get_bool("Lift boundary increments");
     reuse_jacobian              = prm.get_bool("Jacobian reuse");

@@ -1,4 +1,5 @@
 #include <tissuefem/base/input_error.h>
+#include <tissuefem/base/nan_aware.h>
 #include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/output/run_record.h>
 #include <tissuefem/study/quantity.h>
@@ -274,7 +275,8 @@ namespace tissuefem::study
               for (const auto &[t, u] : reference)
                 if (t <= run.rbegin()->first * (1 + 1e-12))
                   {
-                    error = std::max(error, distance(interpolate(run, t), u));
+                    error = max_keeping_nan(error,
+                                            distance(interpolate(run, t), u));
                     size  = std::max(size, norm(u));
                   }
           }

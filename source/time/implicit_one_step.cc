@@ -1,5 +1,6 @@
 #include <tissuefem/base/input_error.h>
 #include <tissuefem/base/timing.h>
+#include <tissuefem/solvers/trust_region.h>
 #include <tissuefem/time/implicit_one_step.h>
 
 #include <algorithm>
@@ -211,31 +212,41 @@ namespace tissuefem::time
       energy = [&](const VectorType &x) {
         return solid.implicit_energy(x, u_tilde, c, t_new);
       };
-    const solvers::NewtonResult result = solvers::solve_newton(
-      context->newton,
-      next.u,
-      [&](const VectorType &x, VectorType &r, bool jacobian) {
-        solid.implicit_residual(x, u_tilde, c, t_new, r, jacobian);
-      },
-      [&, first = 0.](VectorType       &x,
-                      const VectorType &b,
-                      const bool        refactorize) mutable {
-        // Inexact Newton (Eisenstat and Walker 1996) for iterative solvers:
-        // |J du + R_k| <= eta_k |R_k|, eta_k = min(0.1, 0.5 |R_k| / |R_0|),
-        // tight only where Newton's own residual is small.
-        const double norm = b.l2_norm();
-        if (first == 0)
-          first = norm;
-        context->linear_solver.solve(solid.jacobian(),
-                                     x,
-                                     b,
-                                     refactorize,
-                                     std::min(0.1, 0.5 * norm / first));
-      },
-      energy,
-      solid.length_scale(),
-      lifted,
-      unknowns ? &hooks : nullptr);
+    const auto residual = [&](const VectorType &x, VectorType &r, bool J) {
+      solid.implicit_residual(x, u_tilde, c, t_new, r, J);
+    };
+    const auto solve = [&, first = 0.](VectorType       &x,
+                                       const VectorType &b,
+                                       const bool        refactorize) mutable {
+      // Inexact Newton (Eisenstat and Walker 1996) for iterative solvers:
+      // |J du + R_k| <= eta_k |R_k|, eta_k = min(0.1, 0.5 |R_k| / |R_0|),
+      // tight only where Newton's own residual is small.
+      const double norm = b.l2_norm();
+      if (first == 0)
+        first = norm;
+      context->linear_solver.solve(
+        solid.jacobian(), x, b, refactorize, std::min(0.1, 0.5 * norm / first));
+    };
+    const solvers::NewtonResult result
+      = context->newton.trust_region && energy
+          ? solvers::solve_trust_region(
+            context->newton,
+            next.u,
+            residual,
+            solve,
+            [&](VectorType &Jv, const VectorType &v) {
+              solid.jacobian().vmult(Jv, v);
+            },
+            energy,
+            solid.length_scale())
+          : solvers::solve_newton(context->newton,
+                                  next.u,
+                                  residual,
+                                  solve,
+                                  energy,
+                                  solid.length_scale(),
+                                  lifted,
+                                  unknowns ? &hooks : nullptr);
     iterations.end(result.converged);
     last_iterations = result.iterations;
     report.jacobian_evaluations += result.jacobians;
@@ -264,9 +275,10 @@ namespace tissuefem::time
   StepReport
   ImplicitOneStep::advance(State &state, const double end_time)
   {
-    auto              &linear_solver = context->linear_solver;
-    StepReport         report;
-    double             h = std::min(step_size, end_time - state.time);
+    auto      &linear_solver = context->linear_solver;
+    StepReport report;
+    double     h   = std::min(step_size, end_time - state.time);
+    requested_step = h;
     State              next;
     const unsigned int linear_before = linear_solver.statistics().iterations;
     bool               reduced       = false;
@@ -281,16 +293,8 @@ namespace tissuefem::time
         std::ostringstream message;
         message << "Newton failed at t = " << state.time + h
                 << " with dt = " << h << ": " << failure;
-        // Without inertia a step is the problem at its end time alone: if
-        // nothing changes with time, a shorter step is the same problem.
-        const bool quasistatic = mass_coefficient(h) == 0;
-        if (quasistatic && !context->solid.changes_with_time())
-          throw SolverError(
-            message.str()
-            + "; a smaller step cannot help: nothing in this quasistatic "
-              "problem changes with time, so every step is the same problem "
-              "(ramp the loads with 'Boundary conditions/Load factor', e.g. "
-              "'min(t, 1)')");
+        if (const std::string why = halving_cannot_help(state); !why.empty())
+          throw SolverError(message.str() + "; " + why);
         // The smallest step 'Maximum step halvings' allows, whichever
         // way the step got there: successful steps after failures grow
         // only geometrically back towards a failed size, so near a limit
@@ -302,15 +306,6 @@ namespace tissuefem::time
             / std::ldexp(1., context->time.max_step_halvings);
         if (halvings == context->time.max_step_halvings || h / 2 < smallest)
           {
-            std::ostringstream reached;
-            if (quasistatic)
-              {
-                reached << "; the last equilibrium is at t = " << state.time;
-                if (const auto lambda = context->solid.load_factor(state.time))
-                  reached << ", load factor " << *lambda;
-                reached << " (a limit point of the load, or a load step "
-                           "still too large)";
-              }
             std::ostringstream smallest_text;
             smallest_text << smallest;
             throw SolverError(
@@ -318,7 +313,7 @@ namespace tissuefem::time
               + " step halvings of this step, at the smallest step 'Time "
                 "integration/Maximum step halvings' allows ('Time step' / 2^"
               + std::to_string(context->time.max_step_halvings) + " = "
-              + smallest_text.str() + ")" + reached.str());
+              + smallest_text.str() + ")" + last_equilibrium(state));
           }
         parallel_tools::screen()
           << "  " << message.str() << "; retrying with dt = " << h / 2

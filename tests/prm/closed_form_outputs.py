@@ -136,16 +136,18 @@ def tool_pull_bar_1d():
 tool_pull_bar_1d()
 
 
-def gravity_ramp_bar_1d():
+def gravity_ramp_bar_1d(name="gravity_ramp_bar_1d",
+                        factor=lambda t: min(2 * t, 1)):
     # -E u'' = rho g lambda on (0, 1), u(0) = 0, E u'(1) = 0, E = 1,
-    # rho g = -0.1, lambda(t) = min(2 t, 1): u = -0.1 lambda (x - x^2/2).
+    # rho g = -0.1, lambda(t) = min(2 t, 1) (or the default of a quasistatic
+    # run, t / End time = t): u = -0.1 lambda (x - x^2/2).
     # Linear elements reproduce u at the nodes (1D); their energy is that of
     # the nodal interpolant, sum over cells of E/2 (du)^2 / h.
     def u(x, lam):
         return -0.1 * lam * (x - x * x / 2)
     lines = ["cells 4 unknowns 5"]
     for t in (0, 0.25, 0.5, 0.75, 1):
-        lam = min(2 * t, 1)
+        lam = factor(t)
         lines.append("t = %s probe 0 u = %s" % (fmt(t), fmt(u(0.5, lam) + 0.0)))
         lines.append("t = %s probe 1 u = %s" % (fmt(t), fmt(u(1, lam) + 0.0)))
         lines.append("t = %s boundary 0 reaction = %s" % (fmt(t), fmt(0.1 * lam)))
@@ -153,8 +155,9 @@ def gravity_ramp_bar_1d():
     energy = sum(0.5 * (u(b, 1) - u(a, 1)) ** 2 / (b - a)
                  for a, b in zip(nodes, nodes[1:]))
     lines.append("final elastic energy " + fmt(energy))
-    with open("gravity_ramp_bar_1d.output", "w") as f:
+    with open(name + ".output", "w") as f:
         f.write("\n".join(lines) + "\n")
 
 
 gravity_ramp_bar_1d()
+gravity_ramp_bar_1d("gravity_default_ramp_bar_1d", lambda t: t)

@@ -144,9 +144,9 @@ namespace
             expected = sum / volume;
             ++kinds.merged;
           }
-        worst = std::max(worst,
-                         std::abs(after.at(cell->id()).theta - expected)
-                           / expected);
+        tissuefem_tests::raise(worst,
+                               std::abs(after.at(cell->id()).theta - expected)
+                                 / expected);
       }
     return worst;
   }

@@ -103,22 +103,21 @@ namespace
             }
         for (unsigned int i = 0; i < n; ++i)
           {
-            force_scale = std::max(force_scale, std::abs(f[i]));
+            tissuefem_tests::raise(force_scale, std::abs(f[i]));
             for (unsigned int j = 0; j < n; ++j)
-              stiffness_scale
-                = std::max(stiffness_scale, std::abs(K[i * n + j]));
+              tissuefem_tests::raise(stiffness_scale, std::abs(K[i * n + j]));
           }
-        energy_error
-          = std::max(energy_error, std::abs(W - W_edge) / std::abs(W));
+        tissuefem_tests::raise(energy_error,
+                               std::abs(W - W_edge) / std::abs(W));
         for (unsigned int i = 0; i < n; ++i)
           {
-            force_error
-              = std::max(force_error, std::abs(f[i] - forces[i]) / force_scale);
+            tissuefem_tests::raise(force_error,
+                                   std::abs(f[i] - forces[i]) / force_scale);
             for (unsigned int j = 0; j < n; ++j)
-              stiffness_error
-                = std::max(stiffness_error,
-                           std::abs(K[i * n + j] - stiffness[i * n + j])
-                             / stiffness_scale);
+              tissuefem_tests::raise(stiffness_error,
+                                     std::abs(K[i * n + j]
+                                              - stiffness[i * n + j])
+                                       / stiffness_scale);
           }
 
         // A rigid motion of the undeformed simplex: no energy, no force.
@@ -135,7 +134,7 @@ namespace
         model.edge_length_element(
           alpha, volume, Q, fibre, W_edge, forces, nullptr);
         for (const double value : forces)
-          rigid_force = std::max(rigid_force, std::abs(value) / force_scale);
+          tissuefem_tests::raise(rigid_force, std::abs(value) / force_scale);
       }
     const std::string prefix
       = std::to_string(dim) + "D " + name + ": edge length vs displacement";

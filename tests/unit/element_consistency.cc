@@ -120,8 +120,8 @@ namespace
             for (const auto i : d.locally_owned_elements())
               d[i] = random.uniform();
             solid.jacobian().vmult(Jd, d);
-            smallest = std::min(smallest, (Jd * d) / (d * d));
-            largest  = std::max(largest, (Jd * d) / (d * d));
+            tissuefem_tests::lower(smallest, (Jd * d) / (d * d));
+            tissuefem_tests::raise(largest, (Jd * d) / (d * d));
           }
         tissuefem_tests::check(smallest >= -1e-12 * largest,
                                name

@@ -6,6 +6,7 @@
 #include <deal.II/grid/tria.h>
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,9 +26,18 @@ namespace tissuefem::boundary
     void
     parse_parameters(ParameterHandler &prm);
 
+    /// Replaces 'Load factor = automatic' by what it means for this run:
+    /// 't / (@p end_time)' if @p quasistatic (without a manufactured
+    /// solution) and no load expression names t itself, '1' otherwise.
+    void
+    resolve_load_factor(const bool quasistatic, const std::string &end_time);
+
     std::string dirichlet, neumann, body_force, gravity, initial_displacement,
       initial_velocity, load_factor;
     double self_contact_pressure = 0;
+    /// Why 'Load factor = automatic' became what it is (empty if the file
+    /// gave a factor); see resolve_load_factor().
+    std::string load_factor_note;
   };
 
   template <int dim>
@@ -54,7 +64,7 @@ namespace tissuefem::boundary
     };
 
     /// Sets the time at which all expressions are evaluated, and the load
-    /// factor to lambda(time).
+    /// factor to load_factor_in_force(time).
     void
     set_time(const double time);
 
@@ -62,9 +72,30 @@ namespace tissuefem::boundary
     double
     load_factor_at(const double time) const;
 
+    /// The factor the loads carry at @p time: the held one during a load
+    /// continuation (held_load_factor), else lambda(@p time).
+    double
+    load_factor_in_force(const double time) const;
+
+    /// 'Load factor' as given, or as 'automatic' resolved it, for the
+    /// run's first lines ("lambda(t) = t / (2) (automatic: ...)").
+    std::string
+    describe_load_factor() const;
+
     /// Whether 'Load factor' names t (else it is a constant).
     bool
     load_factor_names_time() const;
+
+    /// Whether a Neumann, body force or load factor expression names t.
+    bool
+    loads_name_time() const
+    {
+      return loads_name_time_;
+    }
+
+    /// Whether there is any load: gravity, a body force or a traction.
+    bool
+    has_loads() const;
 
     /**
      * Whether anything the solid is given changes with time: a Dirichlet,
@@ -85,6 +116,10 @@ namespace tissuefem::boundary
     /// 'load_factor', lambda(t) at the time of the last set_time():
     /// consumers multiply by it.
     double load_factor = 1;
+    /// Load continuation (time/quasistatic.cc): while set, the loads carry
+    /// this factor instead of lambda(t), so that a quasistatic step can
+    /// take part of its load increment at a time.
+    std::optional<double> held_load_factor;
     /// Force per unit reference volume (N/m^3 if SI), added to rho_0 * gravity.
     std::unique_ptr<Function<dim>> body_force;
     /// Whether every body force expression is the literal "0".
@@ -100,8 +135,10 @@ namespace tissuefem::boundary
     /// lambda(t), a function of t only (evaluated at the origin).
     std::unique_ptr<Function<dim>> load_factor_function;
     /// Whether a Neumann, body force or load factor expression names t.
-    bool loads_name_time = false;
+    bool loads_name_time_ = false;
     /// Whether the load factor expression names t.
-    bool factor_names_time = false;
+    bool        factor_names_time = false;
+    std::string factor_expression;
+    std::string factor_note;
   };
 } // namespace tissuefem::boundary

@@ -16,7 +16,8 @@ namespace tissuefem::output
   /**
    * Point evaluation of a vector field at fixed reference points. The cell
    * containing each point and the point's reference coordinates are found
-   * once; evaluation is then a sum over the cell's shape functions.
+   * once (geometry::PointLocator: checked in the reference cell, also on
+   * simplices); evaluation is then a sum over the cell's shape functions.
    */
   template <int dim>
   class Probes

@@ -195,6 +195,34 @@ namespace tissuefem::solid
     virtual std::optional<double>
     load_factor(const double time) const = 0;
 
+    /// How the loads (gravity, body force, tractions) vary: there are
+    /// none, they are constant in time, or an expression (a load's or the
+    /// load factor's) names t.
+    enum class LoadHistory
+    {
+      none,
+      constant,
+      changing
+    };
+
+    virtual LoadHistory
+    load_history() const = 0;
+
+    /// lambda(@p time) of 'Load factor', whether or not it names t.
+    virtual double
+    load_factor_at(const double time) const = 0;
+
+    /**
+     * Load continuation: until called again, every load is scaled by
+     * @p factor instead of lambda(t) (none: lambda(t) again), in the
+     * residual, energy, reactions and error indicators alike. A
+     * quasistatic step that failed takes part of its load increment so
+     * (time/quasistatic.cc).
+     */
+    virtual void
+    hold_load_factor(const std::optional<double> factor)
+      = 0;
+
     /**
      * Takes the loads that depend on the state (self contact,
      * 'Boundary conditions/Self contact pressure') from @p u, the start of

@@ -165,6 +165,12 @@ namespace tissuefem::solid
     changes_with_time() const override;
     std::optional<double>
     load_factor(const double time) const override;
+    double
+    load_factor_at(const double time) const override;
+    LoadHistory
+    load_history() const override;
+    void
+    hold_load_factor(const std::optional<double> factor) override;
 
     double
     stored_energy(const VectorType &u) const override;

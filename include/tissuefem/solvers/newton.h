@@ -28,6 +28,9 @@ namespace tissuefem::solvers
     /// Whether the line search asks for sufficient decrease of the energy
     /// (where the caller provides one) rather than of the residual norm.
     bool energy_line_search;
+    /// 'Globalization = trust region': solve_trust_region() where the
+    /// caller has an energy and a Jacobian product.
+    bool trust_region = false;
     bool lift_boundary_increments;
     bool verbose;
     /// Whether Newton keeps the Jacobian (and its factorization or AMG

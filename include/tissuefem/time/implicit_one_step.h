@@ -148,8 +148,31 @@ namespace tissuefem::time
                       VectorType       &lifted,
                       const double      motion);
 
+    /// Why a failed step of this method cannot be helped by a smaller
+    /// one (then the run stops at once, saying so); empty if it can. A
+    /// dynamic step's problem changes with its size, so the default is
+    /// empty.
+    virtual std::string
+    halving_cannot_help(const State &state) const
+    {
+      (void)state;
+      return {};
+    }
+
+    /// What the message of a run that gave up says of the last state
+    /// reached, after "; " (empty: nothing).
+    virtual std::string
+    last_equilibrium(const State &state) const
+    {
+      (void)state;
+      return {};
+    }
+
     /// u_tilde of the step being attempted (see predict()).
     VectorType u_tilde;
+
+    /// The size of the step advance() is taking, before any halving.
+    double requested_step = 0;
 
   private:
     /// The step controller (see 'Maximum step halvings', 'Optimal Newton

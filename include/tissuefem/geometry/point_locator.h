@@ -1,0 +1,78 @@
+#pragma once
+
+#include <deal.II/base/bounding_box.h>
+#include <deal.II/base/point.h>
+#include <deal.II/fe/mapping.h>
+#include <deal.II/grid/reference_cell.h>
+#include <deal.II/grid/tria.h>
+#include <deal.II/numerics/rtree.h>
+
+#include <optional>
+#include <utility>
+#include <vector>
+
+namespace tissuefem::geometry
+{
+  using namespace dealii;
+
+  /**
+   * Where a point of the reference configuration lies: the active cell
+   * that contains it and its coordinates in that cell's reference cell.
+   * The one service for probes, tools and anything else that asks.
+   *
+   * Why not GridTools::find_active_cell_around_point: in deal.II 9.4 its
+   * search works for hypercube meshes only (deal.II issue 14704, fixed by
+   * pull requests 15808/15811 after 9.5 and moved to 9.5.x by 16658;
+   * doc/references.md), so a point near a face of a tetrahedron can be
+   * given to a neighbour and extrapolated there: probe values 5-30 % off
+   * on SOFA's liver, errors of the order of the field itself in
+   * unit/point_location.
+   *
+   * Here the candidates are the cells whose bounding box (slightly
+   * enlarged) contains the point, found in an R-tree; each is checked in
+   * its own reference cell (reference_cell_distance()); the candidate the
+   * point is deepest inside wins, a tie (a point on a shared face) going
+   * to the lowest active cell index, so that every process and every
+   * partition picks the same cell. Built for the current mesh: rebuild it
+   * when the mesh changes.
+   */
+  template <int dim>
+  class PointLocator
+  {
+  public:
+    using CellIterator = typename Triangulation<dim>::active_cell_iterator;
+
+    struct Location
+    {
+      CellIterator cell;
+      /// Coordinates of the point in the reference cell of @p cell.
+      Point<dim> reference;
+    };
+
+    /// How far outside its reference cell a point may be and still count
+    /// as inside (reference units: edges of length 1): round-off of the
+    /// inverse mapping, and points on the mesh's boundary.
+    static constexpr double tolerance = 1e-10;
+
+    PointLocator(const Mapping<dim> &mapping, const Triangulation<dim> &mesh);
+
+    /// The cell containing @p p, or nothing if no cell does (within
+    /// tolerance).
+    std::optional<Location>
+    locate(const Point<dim> &p) const;
+
+    /**
+     * How far @p reference lies outside the reference cell @p kind, in
+     * reference units (0 inside): on simplices the most negative
+     * barycentric coordinate, on hypercubes the largest excess of a
+     * coordinate beyond [0, 1].
+     */
+    static double
+    reference_cell_distance(const ReferenceCell &kind,
+                            const Point<dim>    &reference);
+
+  private:
+    const Mapping<dim>                              &mapping;
+    RTree<std::pair<BoundingBox<dim>, CellIterator>> boxes;
+  };
+} // namespace tissuefem::geometry
