@@ -28,6 +28,16 @@ namespace tissuefem::output
                       Patterns::Integer(1),
                       "Steps between rows of the summary file.");
     prm.declare_entry(
+      "Summary displacement unit",
+      "1",
+      Patterns::Double(1e-300),
+      "Length units (> 0) in which the summary file prints probe "
+      "displacements ('probe 0 u / 0.0001 = ...' for 1e-4). Regression "
+      "tests compare with numdiff, which takes values below 1e-6 as equal: "
+      "a scene whose displacements are of order 1e-5 states them in a "
+      "unit that brings them to order 1, so that their digits are "
+      "compared. Other outputs are unaffected.");
+    prm.declare_entry(
       "Checkpoint interval",
       "0",
       Patterns::Integer(0),
@@ -47,10 +57,11 @@ namespace tissuefem::output
   OutputParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Output");
-    directory           = prm.get("Directory");
-    summary_file        = prm.get("Summary file");
-    summary_interval    = prm.get_integer("Summary interval");
-    checkpoint_interval = prm.get_integer("Checkpoint interval");
+    directory                 = prm.get("Directory");
+    summary_file              = prm.get("Summary file");
+    summary_interval          = prm.get_integer("Summary interval");
+    summary_displacement_unit = prm.get_double("Summary displacement unit");
+    checkpoint_interval       = prm.get_integer("Checkpoint interval");
     prm.leave_subsection();
     require(!directory.empty(), "Output/Directory", "must not be empty");
   }

@@ -4,10 +4,24 @@
 
 namespace tissuefem::output
 {
-  SummaryFile::SummaryFile(const std::string &path, const unsigned int interval)
+  SummaryFile::SummaryFile(const std::string &path,
+                           const unsigned int interval,
+                           const double       displacement_unit)
       : file_path(path)
       , interval(interval)
+      , unit(displacement_unit)
   {
+  }
+
+
+  std::string
+  SummaryFile::unit_label() const
+  {
+    if (unit == 1)
+      return {};
+    std::ostringstream label;
+    label << " / " << unit;
+    return label.str();
   }
 
 

@@ -112,8 +112,16 @@ namespace tissuefem::postprocess
           row << ',' << values[p][c];
         file << row.str() << '\n';
         if (summarize)
-          this->context->summary.line(output::vector_line(
-            time, "probe " + std::to_string(p) + " u", values[p], dim));
+          {
+            auto          &summary = this->context->summary;
+            Vector<double> scaled(values[p]);
+            scaled /= summary.displacement_unit();
+            summary.line(output::vector_line(time,
+                                             "probe " + std::to_string(p) + " u"
+                                               + summary.unit_label(),
+                                             scaled,
+                                             dim));
+          }
       }
     file << std::flush;
   }

@@ -66,7 +66,9 @@ namespace tissuefem::problems
   Elasticity<dim>::create_postprocessors()
   {
     summary = std::make_unique<output::SummaryFile>(
-      output_parameters.summary_file, output_parameters.summary_interval);
+      output_parameters.summary_file,
+      output_parameters.summary_interval,
+      output_parameters.summary_displacement_unit);
     postprocess_context = std::make_unique<postprocess::Context<dim>>(
       postprocess::Context<dim>{*scene, output_parameters.directory, *summary});
     // The registry's (alphabetical) order is the order of their lines in
@@ -438,6 +440,17 @@ namespace tissuefem::problems
     totals.peak_bytes = Utilities::MPI::sum(1024. * memory.VmHWM,
                                             parallel_tools::communicator());
     output::RunRecord record;
+    // What adaptation made of the mesh, for regression tests that must see
+    // refinement that stopped: the finest level and whether there are
+    // hanging nodes. Not the cell count: where the indicator vanishes (the
+    // exact solutions of the adaptive tests) round-off breaks the ties, and
+    // the count moves with the number of threads (91 or 106 cells).
+    if (adaptation->enabled())
+      summary->line("final mesh: finest level "
+                    + std::to_string(scene->triangulation.n_levels() - 1)
+                    + (scene->solid->get_discretization().has_hanging_nodes
+                         ? ", hanging nodes"
+                         : ", no hanging nodes"));
     for (auto &[name, postprocessor] : postprocessors)
       postprocessor->finish(state, totals, record);
     screen << "peak memory (resident, all processes): "

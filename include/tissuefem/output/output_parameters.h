@@ -25,6 +25,8 @@ namespace tissuefem::output
     std::string  directory;
     std::string  summary_file;
     unsigned int summary_interval;
+    /// 'Summary displacement unit' (length units).
+    double       summary_displacement_unit = 1;
     unsigned int checkpoint_interval;
   };
 } // namespace tissuefem::output

@@ -34,7 +34,10 @@ namespace tissuefem::output
   public:
     /// @p path empty: no summary file (every call does nothing);
     /// @p interval: steps between the per-step lines (due()).
-    SummaryFile(const std::string &path, const unsigned int interval);
+    /// @p displacement_unit: 'Output/Summary displacement unit'.
+    SummaryFile(const std::string &path,
+                const unsigned int interval,
+                const double       displacement_unit = 1);
 
     /// Creates the file (before any other output file: if it cannot be
     /// written, nothing is created). Process 0 only; throws InputError
@@ -63,6 +66,17 @@ namespace tissuefem::output
     const std::string &
     path() const;
 
+    /// The length unit of displacements in the file (length units), and
+    /// the label suffix that names it (" / 0.0001"; empty for 1).
+    double
+    displacement_unit() const
+    {
+      return unit;
+    }
+
+    std::string
+    unit_label() const;
+
     /// Flushes what was written (before a checkpoint measures the file).
     void
     flush();
@@ -70,6 +84,7 @@ namespace tissuefem::output
   private:
     std::string   file_path;
     unsigned int  interval;
+    double        unit;
     std::ofstream stream;
   };
 } // namespace tissuefem::output
