@@ -263,23 +263,10 @@ namespace tissuefem::solvers
           ++result.jacobians;
       }
 
-      /// The energy at a state, +infinity where the model cannot evaluate
-      /// it (so that the line search shortens the step).
       double
       energy_at(const VectorType &x)
       {
-        const auto start = Clock::now();
-        double     value = std::numeric_limits<double>::infinity();
-        try
-          {
-            value = energy(x);
-          }
-        catch (const SolverError &)
-          {
-          }
-        result.assembly_seconds += seconds_since(start);
-        return std::isfinite(value) ? value
-                                    : std::numeric_limits<double>::infinity();
+        return energy_or_infinity(energy, x, result);
       }
 
       /// Newton's residual tests (the relative one from the first
@@ -371,13 +358,8 @@ namespace tissuefem::solvers
         }
       if (result.iterations == parameters.max_iterations)
         {
-          // Three significant digits in any range (std::to_string prints
-          // a small norm as 0.000000).
-          std::ostringstream message;
-          message << "no convergence in " << parameters.max_iterations
-                  << " iterations (residual norm " << std::setprecision(3)
-                  << norm << ", force units)";
-          result.failure = message.str();
+          result.failure
+            = no_convergence_message(parameters.max_iterations, norm);
           return true;
         }
       return false;
@@ -612,6 +594,39 @@ namespace tissuefem::solvers
       return false;
     }
   } // namespace
+
+
+  double
+  energy_or_infinity(const std::function<double(const VectorType &)> &energy,
+                     const VectorType                                &x,
+                     NewtonResult                                    &result)
+  {
+    const auto start = std::chrono::steady_clock::now();
+    double     value = std::numeric_limits<double>::infinity();
+    try
+      {
+        value = energy(x);
+      }
+    catch (const SolverError &)
+      {
+      }
+    result.assembly_seconds += seconds_since(start);
+    return std::isfinite(value) ? value
+                                : std::numeric_limits<double>::infinity();
+  }
+
+
+  std::string
+  no_convergence_message(const unsigned int max_iterations, const double norm)
+  {
+    // Three significant digits in any range (std::to_string prints a
+    // small norm as 0.000000).
+    std::ostringstream message;
+    message << "no convergence in " << max_iterations
+            << " iterations (residual norm " << std::setprecision(3) << norm
+            << ", force units)";
+    return message.str();
+  }
 
 
   NewtonResult

@@ -81,18 +81,7 @@ namespace tissuefem::solvers
     // +infinity where the model cannot evaluate a state: the region
     // shrinks.
     const auto energy_at = [&](const VectorType &x) {
-      const auto start = Clock::now();
-      double     value = std::numeric_limits<double>::infinity();
-      try
-        {
-          value = energy(x);
-        }
-      catch (const SolverError &)
-        {
-        }
-      result.assembly_seconds += seconds_since(start);
-      return std::isfinite(value) ? value
-                                  : std::numeric_limits<double>::infinity();
+      return energy_or_infinity(energy, x, result);
     };
 
     try
@@ -129,11 +118,8 @@ namespace tissuefem::solvers
           }
         if (result.iterations >= parameters.max_iterations)
           {
-            std::ostringstream message;
-            message << "no convergence in " << parameters.max_iterations
-                    << " iterations (residual norm " << std::setprecision(3)
-                    << norm << ", force units)";
-            result.failure = message.str();
+            result.failure
+              = no_convergence_message(parameters.max_iterations, norm);
             return result;
           }
 

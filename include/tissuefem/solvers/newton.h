@@ -105,6 +105,19 @@ namespace tissuefem::solvers
     bool full_steps = false;
   };
 
+  /// @p energy at @p x, +infinity where the model cannot evaluate it (a
+  /// SolverError: an inverted element), so that a globalization shortens
+  /// the step; the time it took goes to @p result's assembly time.
+  double
+  energy_or_infinity(const std::function<double(const VectorType &)> &energy,
+                     const VectorType                                &x,
+                     NewtonResult                                    &result);
+
+  /// "no convergence in N iterations (residual norm R, force units)", R in
+  /// three significant digits at any size.
+  std::string
+  no_convergence_message(const unsigned int max_iterations, const double norm);
+
   NewtonResult
   solve_newton(
     const NewtonParameters &parameters,
