@@ -307,7 +307,9 @@ namespace tissuefem::boundary
   bool
   BoundaryConditions<dim>::changes_with_time() const
   {
-    return loads_name_time_
+    // A factor that names t changes nothing where there is no load (the
+    // automatic ramp of a quasistatic run driven by displacements).
+    return (loads_name_time_ && has_loads())
            || std::any_of(dirichlet.begin(),
                           dirichlet.end(),
                           [](const Dirichlet &d) { return d.time_dependent; });

@@ -180,9 +180,11 @@ namespace tissuefem::time
       s << "; the last equilibrium is at t = " << state.time;
       // A factor that names t, or the share of constant loads carried;
       // not "load factor 1" where the loads' own expressions name t.
-      if (constant_loads())
+      const auto loads = context->solid.load_history();
+      if (loads == solid::Operators::LoadHistory::constant)
         s << ", load factor " << reached << " of " << full_factor(state);
-      else if (const auto lambda = context->solid.load_factor(state.time))
+      else if (const auto lambda = context->solid.load_factor(state.time);
+               lambda && loads != solid::Operators::LoadHistory::none)
         s << ", load factor " << *lambda;
       s << " (a limit point of the load, or a load step still too large)";
       return s.str();

@@ -99,7 +99,8 @@ namespace tissuefem::boundary
 
     /**
      * Whether anything the solid is given changes with time: a Dirichlet,
-     * Neumann or body force expression, or the load factor, names t. If
+     * Neumann or body force expression, or (where there are loads) the
+     * load factor, names t. If
      * not, a quasistatic problem is the same at every time, and a smaller
      * step cannot help a failed one.
      */
