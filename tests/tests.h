@@ -6,6 +6,8 @@
 
 #include <deal.II/base/tensor.h>
 
+#include <tissuefem/base/nan_aware.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -177,9 +179,7 @@ namespace tissuefem_tests
         fed = true;
         x   = std::numeric_limits<double>::quiet_NaN();
       }
-    worst = std::isnan(worst) || std::isnan(x)
-              ? std::numeric_limits<double>::quiet_NaN()
-              : std::max(worst, x);
+    worst = tissuefem::max_keeping_nan(worst, x);
   }
 
   /// Lowers @p least to @p x, NaN if either is NaN (as raise()).

@@ -6,10 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <iomanip>
 #include <iostream>
-#include <limits>
-#include <sstream>
 
 namespace tissuefem::solvers
 {
