@@ -1,0 +1,60 @@
+#!/bin/bash
+# What the locking-free linear simplex ('Materials/Formulation = nodal
+# dilatation') costs against plain P1 ('displacement') on the same mesh, in
+# one run of this script, for the scenes of issue 30's target (at most 2
+# times plain P1):
+#   liver  parameters/liver_incompressible.prm with P1 (SOFA's liver, 596
+#          tetrahedra, nu = 0.495, backward Euler, dt = 0.02, 10 steps);
+#   box    parameters/box_3d_drag.prm as simplex 30 x 8 x 8 (9,600
+#          tetrahedra, nu = 0.45, backward Euler, dt = 0.01, 10 steps).
+# Per run (from its run.txt): the median and 95th percentile of the wall
+# time per step (ms), Newton iterations, and per Newton iteration the
+# assembly and the linear solve (ms, the default direct solver); then the
+# ratio nodal / P1 of each. Whole runs, one process, the machine's threads.
+#
+# Usage (from the repository top, after building):
+#   bash benchmarks/nodal_dilatation_cost.sh [path/to/tissuefem]
+set -euo pipefail
+exe=$(realpath "${1:-build/tissuefem}")
+top=$(realpath "$(dirname "$0")/..")
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work"
+
+value() { # key in run.txt
+  sed -n "s/^$1 = \([^ ]*\).*/\1/p" out/run.txt
+}
+
+measure() { # prm, settings...: prints median p95 newton assembly solve (ms)
+  "$exe" "$@" --set "Output/VTU/Interval=0" --set "Output/Directory=out" \
+    > log.txt 2>&1 || { tail -3 log.txt >&2; exit 1; }
+  local its
+  its=$(value "newton iterations")
+  echo "$(value "step median") $(value "step p95") $its $(value "wall assembly") $(value "wall solve")" |
+    awk -v n="$its" '{printf "%.2f %.2f %d %.2f %.2f\n", 1e3*$1, 1e3*$2, $3, 1e3*$4/n, 1e3*$5/n}'
+}
+
+printf '%-6s %-18s %10s %10s %7s %14s %14s\n' scene formulation "median ms" "p95 ms" Newton \
+  "assembly/it ms" "solve/it ms"
+for scene in liver box; do
+  if [ "$scene" = liver ]; then
+    settings=("$top/parameters/liver_incompressible.prm"
+              --set "Geometry/Mesh file=$top/data/liver.msh"
+              --set "Finite element/Polynomial degree=1"
+              --set "Time integration/End time=0.2")
+  else
+    settings=("$top/parameters/box_3d_drag.prm"
+              --set "Geometry/Cell type=simplex" --set "Geometry/Subdivisions=30, 8, 8"
+              --set "Time integration/Time step=0.01" --set "Time integration/End time=0.1")
+  fi
+  read -r -a plain < <(measure "${settings[@]}" --set "Materials/Formulation=displacement")
+  read -r -a nodal < <(measure "${settings[@]}" --set "Materials/Formulation=nodal dilatation")
+  printf '%-6s %-18s %10s %10s %7s %14s %14s\n' "$scene" "P1" "${plain[@]}"
+  printf '%-6s %-18s %10s %10s %7s %14s %14s\n' "$scene" "P1-nodal" "${nodal[@]}"
+  printf '%-6s %-18s' "$scene" "ratio (target 2)"
+  for k in 0 1 2 3 4; do
+    printf ' %*.2f' $([ $k -le 1 ] && echo 10 || ([ $k = 2 ] && echo 7 || echo 14)) \
+      "$(echo "${nodal[$k]} / ${plain[$k]}" | bc -l)"
+  done
+  printf '\n'
+done
