@@ -5,6 +5,8 @@
 #include <tissuefem/base/input_error.h>
 #include <tissuefem/base/parameter_tools.h>
 
+#include <cctype>
+
 #include <cmath>
 #include <iostream>
 #include <map>
@@ -94,6 +96,23 @@ namespace tissuefem
           Utilities::trim(entry.substr(colon + 1)));
       }
     return result;
+  }
+
+
+  bool
+  names_variable(const std::string &expression, const std::string &name)
+  {
+    std::string identifier;
+    for (const char c : expression + ' ')
+      if (std::isalnum(static_cast<unsigned char>(c)) || c == '_')
+        identifier += c;
+      else
+        {
+          if (identifier == name)
+            return true;
+          identifier.clear();
+        }
+    return false;
   }
 
 

@@ -128,24 +128,6 @@ namespace tissuefem::boundary
       return ComponentMask(mask);
     }
 
-    /// Whether an expression uses the variable @p name as a whole
-    /// identifier ('t' is not inside 'sqrt' or 'atan').
-    bool
-    names_variable(const std::string &expression, const std::string &name)
-    {
-      std::string identifier;
-      for (const char c : expression + ' ')
-        if (std::isalnum(static_cast<unsigned char>(c)) || c == '_')
-          identifier += c;
-        else
-          {
-            if (identifier == name)
-              return true;
-            identifier.clear();
-          }
-      return false;
-    }
-
     /// Whether an expression uses the time t; constants and functions of
     /// x, y, z alone do not.
     bool

@@ -1,6 +1,7 @@
 #include <tissuefem/base/input_error.h>
 #include <tissuefem/base/parallel.h>
 #include <tissuefem/base/parameter_tools.h>
+#include <tissuefem/contact/penalty_contact.h>
 #include <tissuefem/geometry/mesh_parts.h>
 #include <tissuefem/scene/scene.h>
 #include <tissuefem/time/interface.h>
@@ -29,6 +30,8 @@ namespace tissuefem
   {
     tool::ToolRegistry<dim>::instance().declare_parameters(prm);
     boundary::ManufacturedParameters::declare_parameters(prm);
+    contact::Obstacle<dim>::declare_parameters(prm);
+    contact::PenaltyContact<dim>::declare_parameters(prm);
   }
 
 
@@ -105,9 +108,24 @@ namespace tissuefem
         manufactured->impose_on(*boundary_conditions);
       }
 
-    // A tool may hold a part only once it acts; the check needs the
-    // constraints known up front.
-    if (!integrates_in_time(prm) && tools.empty())
+    auto obstacles = contact::Obstacle<dim>::create_all(prm);
+    {
+      time::TimeParameters time_parameters;
+      time_parameters.parse_parameters(prm);
+      // Moving obstacles need the time of each force evaluation, which
+      // only the implicit one-step integrators pass to the solid so far.
+      require(obstacles.empty()
+                || time_parameters.integrator == "backward Euler"
+                || time_parameters.integrator == "quasistatic",
+              "Contact/Obstacle 1/Shape",
+              "contact with obstacles needs Time integration/Integrator = "
+              "backward Euler or quasistatic (not '"
+                + time_parameters.integrator + "')");
+    }
+
+    // A tool may hold a part only once it acts, and an obstacle only once
+    // the part touches it; the check needs the constraints known up front.
+    if (!integrates_in_time(prm) && tools.empty() && obstacles.empty())
       check_every_part_held();
 
     solid::FiniteElementParameters fe_parameters;
@@ -118,6 +136,19 @@ namespace tissuefem
     solid          = std::make_unique<solid::Solid<dim>>(*discretization,
                                                 *materials,
                                                 *boundary_conditions);
+    if (!obstacles.empty())
+      {
+        // The penalty scales with the stiffest material's Young's modulus,
+        // E = mu (3 lambda + 2 mu) / (lambda + mu).
+        double modulus = 0;
+        for (const auto &c : material_parameters.constants)
+          modulus
+            = std::max(modulus,
+                       c.mu * (3 * c.lambda + 2 * c.mu) / (c.lambda + c.mu));
+        obstacle_contact = std::make_shared<contact::PenaltyContact<dim>>(
+          prm, *discretization, std::move(obstacles), modulus);
+        solid->add_force_contribution(obstacle_contact);
+      }
     check_initial_data();
   }
 

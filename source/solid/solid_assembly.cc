@@ -678,6 +678,7 @@ namespace tissuefem::solid
                                               jacobian_matrix,
                                               residual))
         inverted.push_back(cell);
+    add_contributions(request, residual);
 
     residual.compress(VectorOperation::add);
     if (request.jacobian)
@@ -685,6 +686,23 @@ namespace tissuefem::solid
     if (three_field.active() && request.internal)
       three_field.initialized();
     report_inversions(inverted);
+  }
+
+
+  template <int dim>
+  void
+  Solid<dim>::add_contributions(const Request &request, VectorType &residual)
+  {
+    if (!request.internal)
+      return;
+    for (const auto &contribution : contributions)
+      contribution->add(*request.u,
+                        request.time,
+                        request.jacobian,
+                        *request.rows,
+                        request.inhomogeneous,
+                        jacobian_matrix,
+                        residual);
   }
 
 
@@ -743,9 +761,10 @@ namespace tissuefem::solid
   }
 
 
-#define TISSUEFEM_INSTANTIATE(dim)                                   \
-  template void Solid<dim>::assemble(const Request &, VectorType &); \
-  template void Solid<dim>::report_inversions(                       \
+#define TISSUEFEM_INSTANTIATE(dim)                                            \
+  template void Solid<dim>::assemble(const Request &, VectorType &);          \
+  template void Solid<dim>::add_contributions(const Request &, VectorType &); \
+  template void Solid<dim>::report_inversions(                                \
     const std::vector<std::tuple<unsigned int, double, Point<dim>>> &) const;
 
   TISSUEFEM_INSTANTIATE(1)

@@ -207,7 +207,10 @@ namespace tissuefem::solid
   {
     // A tool's trajectory moves what it holds (a held tool standing still
     // is rare enough not to be told apart).
-    return boundary_conditions.changes_with_time() || held.has_value();
+    return boundary_conditions.changes_with_time() || held.has_value()
+           || std::any_of(contributions.begin(),
+                          contributions.end(),
+                          [](const auto &c) { return c->changes_with_time(); });
   }
 
 

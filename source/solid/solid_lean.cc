@@ -132,6 +132,7 @@ namespace tissuefem::solid
         else
           rows.distribute_local_to_global(rhs, dofs, residual);
       }
+    add_contributions(request, residual);
 
     residual.compress(VectorOperation::add);
     if (request.jacobian)

@@ -110,6 +110,14 @@ namespace tissuefem::solid
     energy -= force * x;
     if (step_contact_force.size() == x.size())
       energy -= step_contact_force * x;
+    if (!contributions.empty())
+      {
+        VectorType ghosted;
+        discretization.initialize_vector(ghosted, true);
+        make_ghosted(u, ghosted);
+        for (const auto &contribution : contributions)
+          energy += contribution->energy(ghosted, time);
+      }
     if (mass_coefficient != 0)
       {
         // As the residual's inertial term M w, w = c (u - u_tilde).

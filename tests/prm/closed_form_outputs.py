@@ -161,3 +161,59 @@ def gravity_ramp_bar_1d(name="gravity_ramp_bar_1d",
 
 gravity_ramp_bar_1d()
 gravity_ramp_bar_1d("gravity_default_ramp_bar_1d", lambda t: t)
+
+
+def contact_floor_bar_1d():
+    # The bar of gravity_ramp_bar_1d standing on a penalty floor instead of
+    # its clamp: the floor carries the weight 0.1 t (load factor t) with the
+    # penetration 0.1 t / k, k = factor E / h = 100 * 1 / 0.25 = 400; the
+    # bar above is the clamped bar's u shifted by the foot's -0.1 t / k
+    # (the nodal values of linear elements stay exact in 1D, the spring at
+    # x = 0 being a boundary term).
+    k = 100 * 1 / 0.25
+
+    def u(x, t):
+        return -0.1 * t / k - 0.1 * t * (x - x * x / 2)
+    lines = ["cells 4 unknowns 5"]
+    for t in (0, 0.5, 1):
+        lines.append("t = %s obstacle floor force = %s" % (fmt(t), fmt(0.1 * t)))
+        lines.append("t = %s obstacle floor penetration = %s" % (fmt(t), fmt(0.1 * t / k)))
+        for p, x in enumerate((0, 0.5, 1)):
+            lines.append("t = %s probe %d u = %s" % (fmt(t), p, fmt(u(x, t) + 0.0)))
+    nodes = [0, 0.25, 0.5, 0.75, 1]
+    energy = sum(0.5 * (u(b, 1) - u(a, 1)) ** 2 / (b - a)
+                 for a, b in zip(nodes, nodes[1:]))
+    lines.append("final elastic energy " + fmt(energy))
+    with open("contact_floor_bar_1d.output", "w") as f:
+        f.write("\n".join(lines) + "\n")
+
+
+contact_floor_bar_1d()
+
+
+def contact_floor_block_2d():
+    # Uniaxial stress under the block's weight (nu = 0, frictionless floor,
+    # roller on x = 0): each column is the 1D bar of contact_floor_bar_1d
+    # with H = 0.5, rho g = 0.1 and k = 100 E / h, h = 0.25 sqrt 2 (the
+    # cells' diameter); the floor carries the weight 0.1 * 0.5 * 1 * t.
+    # The energy is that of the nodal interpolant (two cells per column).
+    k = 100 / (0.25 * math.sqrt(2))
+
+    def u(y, t):
+        return -0.05 * t / k - 0.1 * t * (0.5 * y - y * y / 2)
+    lines = ["cells 8 unknowns 30"]
+    for t in (0, 0.5, 1):
+        lines.append("t = %s obstacle floor force = 0 %s" % (fmt(t), fmt(0.05 * t)))
+        lines.append("t = %s obstacle floor penetration = %s" % (fmt(t), fmt(0.05 * t / k)))
+        for p, y in enumerate((0, 0.25, 0.5)):
+            lines.append("t = %s probe %d u = 0 %s" % (fmt(t), p, fmt(u(y, t) + 0.0)))
+    nodes = [0, 0.25, 0.5]
+    energy = sum(0.5 * (u(b, 1) - u(a, 1)) ** 2 / (b - a)
+                 for a, b in zip(nodes, nodes[1:]))
+    lines.append("final elastic energy " + fmt(energy))
+    for name in ("contact_floor_block_2d", "contact_floor_block_2d.mpirun=2"):
+        with open(name + ".output", "w") as f:
+            f.write("\n".join(lines) + "\n")
+
+
+contact_floor_block_2d()

@@ -41,6 +41,11 @@ namespace tissuefem
   std::vector<std::pair<types::boundary_id, std::string>>
   parse_id_entries(const std::string &text, const std::string &parameter);
 
+  /// Whether an expression uses the variable @p name as a whole
+  /// identifier ('t' is not inside 'sqrt' or 'atan').
+  bool
+  names_variable(const std::string &expression, const std::string &name);
+
   /// The muparser variable names for points in @p dim dimensions plus time.
   std::string
   expression_variables(const unsigned int dim);

@@ -5,6 +5,7 @@
 
 #include <tissuefem/boundary/boundary_conditions.h>
 #include <tissuefem/boundary/manufactured_solution.h>
+#include <tissuefem/contact/penalty_contact.h>
 #include <tissuefem/geometry/geometry.h>
 #include <tissuefem/materials/material_set.h>
 #include <tissuefem/solid/discretization.h>
@@ -73,6 +74,9 @@ namespace tissuefem
     /// The tools the file asks for (none, one, or one of each registered
     /// kind), by their registered names.
     std::map<std::string, std::unique_ptr<tool::Interface<dim>>> tools;
+    /// Contact with the rigid obstacles of 'Contact' (none: null), also
+    /// handed to the solid as a force contribution.
+    std::shared_ptr<const contact::PenaltyContact<dim>> obstacle_contact;
 
   private:
     /// Initial and boundary data must be finite where they are used.

@@ -4,6 +4,7 @@
 
 #include <tissuefem/base/input_error.h>
 #include <tissuefem/boundary/boundary_conditions.h>
+#include <tissuefem/forces/interface.h>
 #include <tissuefem/materials/material_set.h>
 #include <tissuefem/solid/cell_cache.h>
 #include <tissuefem/solid/change_signals.h>
@@ -58,6 +59,19 @@ namespace tissuefem::solid
 
     /// Announcements of changes of mesh or constraints.
     ChangeSignals signals;
+
+    /**
+     * Adds @p contribution (forces/interface.h) to every residual,
+     * Jacobian and implicit energy this solid assembles from now on: its
+     * dE/du and d2E/du2 wherever the elements' internal forces are
+     * assembled, its E in implicit_energy().
+     */
+    void
+    add_force_contribution(
+      std::shared_ptr<const forces::Interface<dim>> contribution)
+    {
+      contributions.push_back(std::move(contribution));
+    }
 
     void
     initialize_vector(VectorType &v) const override;
@@ -520,6 +534,13 @@ namespace tissuefem::solid
     bool body_force_present;
     /// Ghosted copies of the arguments, reused between calls.
     VectorType ghosted_u, ghosted_w;
+    /// Forces that do not come from the elements (add_force_contribution).
+    std::vector<std::shared_ptr<const forces::Interface<dim>>> contributions;
+
+    /// Adds the contributions' terms of an assembly that asks for internal
+    /// forces, before the caller compresses.
+    void
+    add_contributions(const Request &request, VectorType &residual);
     /// The self-contact force of the step begun last (begin_step()), as
     /// assembled on the constrained rows; empty without self contact.
     VectorType step_contact_force;

@@ -1,0 +1,58 @@
+#pragma once
+
+#include <deal.II/base/function_parser.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <tissuefem/contact/shape.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace tissuefem::contact
+{
+  /**
+   * A rigid obstacle of the scene: a named shape (shape.h) translated by a
+   * motion given as expressions of t. Declared in 'Contact/Obstacle k',
+   * k = 1..max_obstacles, each with its own 'Shape' (none by default), so
+   * that a scene has as many obstacles as it fills in.
+   */
+  template <int dim>
+  class Obstacle
+  {
+  public:
+    /// The slots 'Contact/Obstacle k' and, inside each, every registered
+    /// shape's own subsection.
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    /// The obstacles the file asks for, in slot order.
+    static std::vector<Obstacle<dim>>
+    create_all(ParameterHandler &prm);
+
+    /// The shape's translation at @p time (length units).
+    Tensor<1, dim>
+    offset(const double time) const;
+
+    /// The gap of the point @p x with the shape translated by @p offset
+    /// (shape.h).
+    Gap<dim>
+    gap(const Point<dim> &x, const Tensor<1, dim> &offset) const
+    {
+      return shape->gap(x - offset);
+    }
+
+    /// The name it carries in every output.
+    std::string name;
+
+    /// Whether its motion names t.
+    bool moves = false;
+
+  private:
+    std::shared_ptr<const Shape<dim>>    shape;
+    std::shared_ptr<FunctionParser<dim>> motion;
+  };
+
+  /// Slots 'Obstacle 1' .. 'Obstacle max_obstacles' in 'Contact'.
+  constexpr unsigned int max_obstacles = 4;
+} // namespace tissuefem::contact

@@ -1,0 +1,126 @@
+#pragma once
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/fe/fe_values.h>
+
+#include <tissuefem/contact/obstacle.h>
+#include <tissuefem/forces/interface.h>
+#include <tissuefem/solid/discretization.h>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace tissuefem::contact
+{
+  /**
+   * Frictionless contact between the tissue's boundary and rigid
+   * obstacles, by a penalty (Wriggers 2006, chapters 4 and 6;
+   * doc/user_guide.md, "Obstacles and contact"): at every
+   * quadrature point of every boundary face, at its deformed position x =
+   * X + u(X), each obstacle's gap g(x) (obstacle.h) where it is negative
+   * costs the energy
+   *
+   *   E = sum over points of k / 2 g^2 dA,   k = factor E_tissue / h,
+   *
+   * dA the point's reference area weight, h the diameter of the point's
+   * cell and E_tissue the largest Young's modulus of the materials, so
+   * that the penetration under a given pressure p, p / k = p h / (factor
+   * E_tissue), is a fixed fraction of the cell's own strain under p, on
+   * any mesh and in any units. The force on the tissue is -dE/du = -k g n
+   * dA per point (n the obstacle's outward normal), and its tangent
+   * k (n (x) n + g dn/dx) dA per point pair of shape functions: the
+   * consistent linearization, curvature included, so that Newton keeps
+   * its quadratic convergence with contact active. Points at g <= 0 count
+   * in the tangent (so that a body that just touches is held on the first
+   * iteration), points at g < 0 in the force.
+   */
+  template <int dim>
+  class PenaltyContact : public forces::Interface<dim>
+  {
+  public:
+    /// 'Contact/Penalty factor'.
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    /// With the obstacles @p obstacles of the scene (none: inactive) and
+    /// the tissue's largest Young's modulus @p modulus (stress units).
+    PenaltyContact(ParameterHandler                 &prm,
+                   const solid::Discretization<dim> &discretization,
+                   std::vector<Obstacle<dim>>        obstacles,
+                   const double                      modulus);
+
+    void
+    add(const VectorType                &u,
+        const double                     time,
+        const bool                       jacobian,
+        const AffineConstraints<double> &rows,
+        const bool                       inhomogeneous,
+        MatrixType                      &matrix,
+        VectorType                      &residual) const override;
+
+    double
+    energy(const VectorType &u, const double time) const override;
+
+    /// Whether any obstacle moves.
+    bool
+    changes_with_time() const override
+    {
+      for (const auto &obstacle : obstacle_list)
+        if (obstacle.moves)
+          return true;
+      return false;
+    }
+
+    /// What each obstacle does, summed over the processes.
+    struct Report
+    {
+      std::string name;
+      /// The resultant force of the obstacle on the tissue (force units).
+      Tensor<1, dim> force;
+      /// The largest penetration, max(-g, 0) (length units).
+      double penetration = 0;
+      /// The reference area in contact, g < 0 (length^(dim-1) units).
+      double area = 0;
+    };
+
+    std::vector<Report>
+    report(const VectorType &u, const double time) const;
+
+    const std::vector<Obstacle<dim>> &
+    obstacles() const
+    {
+      return obstacle_list;
+    }
+
+  private:
+    /// One contact point: obstacle index, gap, penalty stiffness k,
+    /// reference area weight dA, point index q of the face.
+    struct Point_
+    {
+      unsigned int obstacle;
+      Gap<dim>     gap;
+      double       k;
+      double       area;
+      unsigned int q;
+    };
+
+    /**
+     * Calls @p face(fe_face_values, dofs, points) for each boundary face of
+     * each locally owned cell with at least one point at g <= 0, for the
+     * ghosted displacement @p u at @p time.
+     */
+    void
+    for_each_face(
+      const VectorType                                       &u,
+      const double                                            time,
+      const std::function<void(const FEFaceValues<dim> &,
+                               const std::vector<types::global_dof_index> &,
+                               const std::vector<Point_> &)> &face) const;
+
+    const solid::Discretization<dim> &discretization;
+    std::vector<Obstacle<dim>>        obstacle_list;
+    double                            factor;
+    double                            modulus;
+  };
+} // namespace tissuefem::contact

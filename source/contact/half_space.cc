@@ -1,0 +1,57 @@
+#include <tissuefem/base/input_error.h>
+#include <tissuefem/base/parameter_tools.h>
+#include <tissuefem/contact/half_space.h>
+
+namespace tissuefem::contact
+{
+  template <int dim>
+  void
+  HalfSpace<dim>::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("half-space");
+    prm.declare_entry("Point",
+                      "0, 0, 0",
+                      Patterns::Anything(),
+                      "A point of the bounding plane (length units; the "
+                      "first dim coordinates are used).");
+    prm.declare_entry("Normal",
+                      "0, 1, 0",
+                      Patterns::Anything(),
+                      "The plane's normal, pointing out of the obstacle "
+                      "towards the tissue (normalized; the first dim "
+                      "components are used).");
+    prm.leave_subsection();
+  }
+
+
+  template <int dim>
+  HalfSpace<dim>::HalfSpace(ParameterHandler &prm)
+  {
+    prm.enter_subsection("half-space");
+    point  = parse_leading_point<dim>(prm.get("Point"), "half-space/Point");
+    normal = parse_leading_point<dim>(prm.get("Normal"), "half-space/Normal");
+    prm.leave_subsection();
+    require(normal.norm() > 0, "half-space/Normal", "must not be zero");
+    normal /= normal.norm();
+  }
+
+
+  template <int dim>
+  Gap<dim>
+  HalfSpace<dim>::gap(const Point<dim> &y) const
+  {
+    Gap<dim> result;
+    result.distance = (y - point) * normal;
+    result.normal   = normal;
+    return result;
+  }
+
+
+  template class HalfSpace<1>;
+  template class HalfSpace<2>;
+  template class HalfSpace<3>;
+
+  TISSUEFEM_REGISTER_SHAPE(HalfSpace,
+                           "half-space",
+                           "everything behind a plane (a table, a floor).")
+} // namespace tissuefem::contact
