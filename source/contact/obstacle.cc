@@ -58,6 +58,7 @@ namespace tissuefem::contact
         if (shape != "none")
           {
             Obstacle<dim> obstacle;
+            obstacle.slot = "Contact/" + slot;
             obstacle.name = Utilities::trim(prm.get("Name"));
             require(!obstacle.name.empty()
                       && obstacle.name.find_first_of(",\n")

@@ -1,4 +1,5 @@
 #include <deal.II/fe/fe_values_extractors.h>
+#include <deal.II/grid/grid_tools.h>
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>
 
@@ -9,6 +10,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <sstream>
 
 namespace tissuefem::contact
 {
@@ -27,7 +30,33 @@ namespace tissuefem::contact
       "a contact pressure p is then p h / (factor E): at 100, a hundredth "
       "of the strain p / E the pressure causes, times the cell size. "
       "Larger is closer to no penetration and stiffer for Newton and for "
-      "explicit steps. Must be > 0.");
+      "explicit steps. Must be > 0. With the augmented Lagrangian it sets "
+      "only how fast the multiplier updates converge.");
+    prm.declare_entry(
+      "Method",
+      "penalty",
+      Patterns::Selection("penalty|augmented Lagrangian"),
+      "How contact is enforced. 'penalty': a pressure k times the "
+      "penetration, which leaves a penetration of p / k. 'augmented "
+      "Lagrangian': a multiplier per contact point, updated after each "
+      "converged solve of a step (Uzawa) until every gap is within 'Gap "
+      "tolerance'; each update costs a Newton solve (usually 1-3 "
+      "iterations). Needs an implicit one-step integrator (backward Euler "
+      "or quasistatic).");
+    prm.declare_entry(
+      "Gap tolerance",
+      "0",
+      Patterns::Double(0),
+      "Augmented Lagrangian: the largest gap accepted at a contact point "
+      "(length units): its penetration, or its distance from the obstacle "
+      "where it is pressed. 0 takes 1e-4 times the body's diameter.");
+    prm.declare_entry(
+      "Maximum multiplier updates",
+      "50",
+      Patterns::Integer(1, 10000),
+      "Augmented Lagrangian: the updates a step may take to bring every "
+      "gap within 'Gap tolerance'; beyond, the step fails (and may be "
+      "retried shorter).");
     prm.leave_subsection();
   }
 
@@ -43,9 +72,18 @@ namespace tissuefem::contact
       , modulus(modulus)
   {
     prm.enter_subsection("Contact");
-    factor = prm.get_double("Penalty factor");
+    factor      = prm.get_double("Penalty factor");
+    augmented   = prm.get("Method") == "augmented Lagrangian";
+    tolerance   = prm.get_double("Gap tolerance");
+    max_updates = prm.get_integer("Maximum multiplier updates");
     prm.leave_subsection();
     require(factor > 0, "Contact/Penalty factor", "must be > 0");
+    const auto &triangulation = discretization.dof_handler.get_triangulation();
+    if (tolerance == 0)
+      tolerance = 1e-4 * GridTools::diameter(triangulation);
+    // Keys name active cells, whose numbering a mesh change redraws.
+    mesh_changed = triangulation.signals.any_change.connect(
+      [this]() { multipliers.clear(); });
   }
 
 
@@ -73,12 +111,19 @@ namespace tissuefem::contact
     std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
     std::vector<Tensor<1, dim>>          u_values;
     std::vector<Point_>                  points;
+    const std::uint64_t                  n_q   = values.n_quadrature_points;
+    const std::uint64_t                  n_obs = obstacle_list.size();
     for (const auto &cell : discretization.dof_handler.active_cell_iterators())
       if (cell->is_locally_owned() && cell->at_boundary())
-        for (const auto &f : cell->face_iterators())
-          if (f->at_boundary())
+        for (const unsigned int f : cell->face_indices())
+          if (cell->face(f)->at_boundary())
             {
               values.reinit(cell, f);
+              const std::uint64_t first
+                = (std::uint64_t(cell->active_cell_index())
+                     * GeometryInfo<dim>::faces_per_cell
+                   + f)
+                  * n_q * n_obs;
               u_values.resize(values.n_quadrature_points);
               values[displacement].get_function_values(u, u_values);
               const double k = factor * modulus / cell->diameter();
@@ -89,8 +134,23 @@ namespace tissuefem::contact
                   for (unsigned int o = 0; o < obstacle_list.size(); ++o)
                     {
                       const Gap<dim> gap = obstacle_list[o].gap(x, offsets[o]);
-                      if (gap.distance <= 0)
-                        points.push_back({o, gap, k, values.JxW(q), q});
+                      const std::uint64_t key    = first + q * n_obs + o;
+                      double              lambda = 0;
+                      if (!multipliers.empty())
+                        if (const auto m = multipliers.find(key);
+                            m != multipliers.end())
+                          lambda = m->second;
+                      // Active where lambda - k g >= 0; NaN gaps pass
+                      // too, to be seen by Newton's checks.
+                      if (!(lambda - k * gap.distance < 0))
+                        points.push_back(
+                          {o,
+                           gap,
+                           k,
+                           values.JxW(q),
+                           q,
+                           key,
+                           std::max(0., lambda - k * gap.distance)});
                     }
                 }
               if (points.empty())
@@ -123,21 +183,20 @@ namespace tissuefem::contact
       r = 0;
       for (const Point_ &p : points)
         {
-          const double weight = p.k * p.area;
+          const double stiffness = p.k * p.area, force = p.pressure * p.area;
           for (unsigned int i = 0; i < n; ++i)
             phi[i] = values[displacement].value(i, p.q);
           for (unsigned int i = 0; i < n; ++i)
             {
               const double n_i = p.gap.normal * phi[i];
-              // dE/du_i = k g dg/du_i, dg/du_i = n . phi_i.
-              r(i) += weight * p.gap.distance * n_i;
+              // dE/du_i = -p dg/du_i dA, dg/du_i = n . phi_i; d2E/du_i du_j
+              // = (k n_i n_j - p phi_i . dn/dx phi_j) dA.
+              r(i) -= force * n_i;
               if (jacobian)
                 for (unsigned int j = 0; j < n; ++j)
                   K(i, j)
-                    += weight
-                       * (n_i * (p.gap.normal * phi[j])
-                          + p.gap.distance
-                              * (phi[i] * (p.gap.normal_gradient * phi[j])));
+                    += stiffness * n_i * (p.gap.normal * phi[j])
+                       - force * (phi[i] * (p.gap.normal_gradient * phi[j]));
             }
         }
       if (jacobian)
@@ -159,7 +218,7 @@ namespace tissuefem::contact
                     const std::vector<types::global_dof_index> &,
                     const std::vector<Point_> &points) {
       for (const Point_ &p : points)
-        sum += 0.5 * p.k * p.area * p.gap.distance * p.gap.distance;
+        sum += 0.5 * p.pressure * p.pressure / p.k * p.area;
     };
     for_each_face(u, time, face);
     return Utilities::MPI::sum(sum, parallel_tools::communicator());
@@ -171,36 +230,83 @@ namespace tissuefem::contact
   PenaltyContact<dim>::report(const VectorType &u, const double time) const
   {
     const unsigned int  m = obstacle_list.size();
-    std::vector<double> sums(m * (dim + 1), 0.), deepest(m, 0.);
-    auto                face = [&](const FEFaceValues<dim> &,
+    std::vector<double> sums(m * (dim + 1), 0.), deepest(m, 0.), highest(m, 0.),
+      lowest(m, std::numeric_limits<double>::infinity());
+    auto face = [&](const FEFaceValues<dim> &,
                     const std::vector<types::global_dof_index> &,
                     const std::vector<Point_> &points) {
       for (const Point_ &p : points)
-        if (p.gap.distance < 0)
-          {
-            double *s = &sums[p.obstacle * (dim + 1)];
-            for (unsigned int d = 0; d < dim; ++d)
-              s[d] -= p.k * p.area * p.gap.distance * p.gap.normal[d];
-            s[dim] += p.area;
-            deepest[p.obstacle]
-              = max_keeping_nan(deepest[p.obstacle], -p.gap.distance);
-          }
+        {
+          const unsigned int o = p.obstacle;
+          if (p.pressure > 0)
+            {
+              double *s = &sums[o * (dim + 1)];
+              for (unsigned int d = 0; d < dim; ++d)
+                s[d] += p.pressure * p.area * p.gap.normal[d];
+              s[dim] += p.area;
+              highest[o] = max_keeping_nan(highest[o], p.pressure);
+              lowest[o]  = std::min(lowest[o], p.pressure);
+            }
+          deepest[o] = max_keeping_nan(deepest[o], -p.gap.distance);
+        }
     };
     for_each_face(u, time, face);
     const MPI_Comm comm = parallel_tools::communicator();
     Utilities::MPI::sum(sums, comm, sums);
-    for (double &d : deepest)
-      d = mpi_max_keeping_nan(d, comm);
     std::vector<Report> result(m);
     for (unsigned int o = 0; o < m; ++o)
       {
         result[o].name = obstacle_list[o].name;
         for (unsigned int d = 0; d < dim; ++d)
           result[o].force[d] = sums[o * (dim + 1) + d];
-        result[o].area        = sums[o * (dim + 1) + dim];
-        result[o].penetration = deepest[o];
+        result[o].area         = sums[o * (dim + 1) + dim];
+        result[o].penetration  = mpi_max_keeping_nan(deepest[o], comm);
+        result[o].max_pressure = mpi_max_keeping_nan(highest[o], comm);
+        const double low       = Utilities::MPI::min(lowest[o], comm);
+        result[o].min_pressure = std::isfinite(low) ? low : 0.;
       }
     return result;
+  }
+
+
+  template <int dim>
+  forces::Augmentation
+  PenaltyContact<dim>::augment(const VectorType  &u,
+                               const double       time,
+                               const unsigned int update,
+                               std::string       &message)
+  {
+    if (!augmented)
+      return forces::Augmentation::satisfied;
+    // Uzawa: lambda <- p at every point; points left out have p = 0.
+    std::unordered_map<std::uint64_t, double> updated;
+    double                                    worst = 0;
+    auto face = [&](const FEFaceValues<dim> &,
+                    const std::vector<types::global_dof_index> &,
+                    const std::vector<Point_> &points) {
+      for (const Point_ &p : points)
+        {
+          const double g = p.gap.distance;
+          worst = max_keeping_nan(worst, p.pressure > 0 ? std::abs(g) : -g);
+          if (p.pressure > 0)
+            updated.emplace(p.key, p.pressure);
+        }
+    };
+    for_each_face(u, time, face);
+    multipliers.swap(updated);
+    worst = mpi_max_keeping_nan(worst, parallel_tools::communicator());
+    if (worst <= tolerance)
+      return forces::Augmentation::satisfied;
+    if (update + 1 < max_updates && std::isfinite(worst))
+      return forces::Augmentation::again;
+    std::ostringstream why;
+    why << "the augmented Lagrangian left a gap of " << worst
+        << " (length units; 'Contact/Gap tolerance' " << tolerance << ") after "
+        << update + 1
+        << " multiplier updates ('Contact/Maximum multiplier updates'; a "
+           "larger 'Contact/Penalty factor' converges in fewer)";
+    message = why.str();
+    return forces::Augmentation::failed;
   }
 
 

@@ -38,7 +38,7 @@ namespace tissuefem::postprocess
     file << "time,obstacle";
     for (unsigned int d = 0; d < dim; ++d)
       file << ",F" << coordinates[d];
-    file << ",penetration,area\n" << std::flush;
+    file << ",penetration,area,min pressure,max pressure\n" << std::flush;
   }
 
 
@@ -67,7 +67,8 @@ namespace tissuefem::postprocess
         file << step.state.time << ',' << r.name;
         for (unsigned int d = 0; d < dim; ++d)
           file << ',' << r.force[d];
-        file << ',' << r.penetration << ',' << r.area << '\n';
+        file << ',' << r.penetration << ',' << r.area << ',' << r.min_pressure
+             << ',' << r.max_pressure << '\n';
         if (summarize)
           {
             this->context->summary.line(output::vector_line(
@@ -77,6 +78,12 @@ namespace tissuefem::postprocess
                                   "obstacle " + r.name + " penetration",
                                   &r.penetration,
                                   1));
+            const double range[] = {r.min_pressure, r.max_pressure};
+            this->context->summary.line(
+              output::vector_line(step.state.time,
+                                  "obstacle " + r.name + " pressure range",
+                                  range,
+                                  2));
           }
       }
     file << std::flush;
@@ -89,6 +96,8 @@ namespace tissuefem::postprocess
   TISSUEFEM_REGISTER_POSTPROCESSOR(
     ContactOutput,
     "contact",
-    "contact.csv: per obstacle, its force on the tissue, the largest "
-    "penetration and the area in contact.")
+    "contact.csv: per obstacle and step, its force on the tissue (force "
+    "units), the largest penetration (length units), the area carrying a "
+    "pressure (length^(dim-1)) and the smallest and largest contact "
+    "pressure there (stress units).")
 } // namespace tissuefem::postprocess

@@ -70,20 +70,6 @@ namespace tissuefem
     boundary_conditions = std::make_unique<boundary::BoundaryConditions<dim>>(
       boundary_parameters);
     boundary_conditions->check_boundary_ids(triangulation);
-    {
-      // Only these integrators take the frozen contact force
-      // (Operators::begin_step()); others would ignore it unseen.
-      time::TimeParameters time_parameters;
-      time_parameters.parse_parameters(prm);
-      require(boundary_parameters.self_contact_pressure == 0
-                || time_parameters.integrator == "backward Euler"
-                || time_parameters.integrator == "quasistatic",
-              "Boundary conditions/Self contact pressure",
-              "needs Time integration/Integrator = backward Euler or "
-              "quasistatic (not '"
-                + time_parameters.integrator + "')");
-    }
-
     // Every registered kind of tool the file asks for.
     for (const auto &[name, entry] : tool::ToolRegistry<dim>::instance().all())
       if (auto t = entry.create(prm, triangulation))
@@ -110,17 +96,27 @@ namespace tissuefem
 
     auto obstacles = contact::Obstacle<dim>::create_all(prm);
     {
+      // Only these integrators take the frozen self-contact force
+      // (Operators::begin_step()), pass the time of each force evaluation
+      // that a moving obstacle needs, and update the contact multipliers
+      // (Operators::augment()); others would ignore them unseen.
       time::TimeParameters time_parameters;
       time_parameters.parse_parameters(prm);
-      // Moving obstacles need the time of each force evaluation, which
-      // only the implicit one-step integrators pass to the solid so far.
-      require(obstacles.empty()
-                || time_parameters.integrator == "backward Euler"
-                || time_parameters.integrator == "quasistatic",
-              "Contact/Obstacle 1/Shape",
-              "contact with obstacles needs Time integration/Integrator = "
-              "backward Euler or quasistatic (not '"
-                + time_parameters.integrator + "')");
+      const bool implicit_one_step
+        = time_parameters.integrator == "backward Euler"
+          || time_parameters.integrator == "quasistatic";
+      const std::string needs
+        = "needs Time integration/Integrator = backward Euler or "
+          "quasistatic (not '"
+          + time_parameters.integrator + "')";
+      require(boundary_parameters.self_contact_pressure == 0
+                || implicit_one_step,
+              "Boundary conditions/Self contact pressure",
+              needs);
+      require(obstacles.empty() || implicit_one_step,
+              obstacles.empty() ? std::string()
+                                : obstacles.front().slot + "/Shape",
+              "contact with obstacles " + needs);
     }
 
     // A tool may hold a part only once it acts, and an obstacle only once

@@ -282,6 +282,33 @@ namespace tissuefem::solid
 
 
   template <int dim>
+  forces::Augmentation
+  Solid<dim>::augment(const VectorType  &u,
+                      const double       time,
+                      const unsigned int update,
+                      std::string       &message)
+  {
+    if (contributions.empty())
+      return forces::Augmentation::satisfied;
+    make_ghosted(u, ghosted_u);
+    auto result = forces::Augmentation::satisfied;
+    for (const auto &contribution : contributions)
+      {
+        std::string why;
+        const auto status = contribution->augment(ghosted_u, time, update, why);
+        if (status == forces::Augmentation::failed)
+          {
+            message = why;
+            return status;
+          }
+        if (status == forces::Augmentation::again)
+          result = status;
+      }
+    return result;
+  }
+
+
+  template <int dim>
   void
   Solid<dim>::implicit_residual_lifting(const VectorType &u,
                                         const VectorType &u_tilde,

@@ -98,7 +98,11 @@ namespace tissuefem::solid
                               const double      mass_coefficient,
                               const double      time)
   {
-    double energy = stored_energy_with(u, &time);
+    // One ghosted copy serves the elements and the contributions.
+    VectorType ghosted;
+    discretization.initialize_vector(ghosted, true);
+    make_ghosted(u, ghosted);
+    double energy = stored_energy_with(ghosted, &time);
     if (!std::isfinite(energy))
       return energy;
     // Dead loads: the external work is f_ext . u, with hanging-node values
@@ -110,14 +114,8 @@ namespace tissuefem::solid
     energy -= force * x;
     if (step_contact_force.size() == x.size())
       energy -= step_contact_force * x;
-    if (!contributions.empty())
-      {
-        VectorType ghosted;
-        discretization.initialize_vector(ghosted, true);
-        make_ghosted(u, ghosted);
-        for (const auto &contribution : contributions)
-          energy += contribution->energy(ghosted, time);
-      }
+    for (const auto &contribution : contributions)
+      energy += contribution->energy(ghosted, time);
     if (mass_coefficient != 0)
       {
         // As the residual's inertial term M w, w = c (u - u_tilde).
@@ -134,21 +132,21 @@ namespace tissuefem::solid
   double
   Solid<dim>::stored_energy(const VectorType &u) const
   {
-    return stored_energy_with(u, nullptr);
+    VectorType ghosted;
+    discretization.initialize_vector(ghosted, true);
+    make_ghosted(u, ghosted);
+    return stored_energy_with(ghosted, nullptr);
   }
 
 
   template <int dim>
   double
-  Solid<dim>::stored_energy_with(const VectorType &u,
+  Solid<dim>::stored_energy_with(const VectorType &ghosted,
                                  const double     *carry_time) const
   {
     // From the cell cache, as assembly does: no FEValues per cell, so that
     // the per-step energy of explicit runs costs less than a force
     // evaluation.
-    VectorType ghosted;
-    discretization.initialize_vector(ghosted, true);
-    make_ghosted(u, ghosted);
     const unsigned int n_q = cache.n_q, n_scalar = cache.n_scalar;
     const unsigned int n      = cache.n_dofs;
     const double      *values = ghosted.trilinos_vector()[0];

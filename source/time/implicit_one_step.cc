@@ -227,38 +227,59 @@ namespace tissuefem::time
       context->linear_solver.solve(
         solid.jacobian(), x, b, refactorize, std::min(0.1, 0.5 * norm / first));
     };
-    const solvers::NewtonResult result
-      = context->newton.trust_region && energy
-          ? solvers::solve_trust_region(
-            context->newton,
-            next.u,
-            residual,
-            solve,
-            [&](VectorType &Jv, const VectorType &v) {
-              solid.jacobian().vmult(Jv, v);
-            },
-            energy,
-            solid.length_scale())
-          : solvers::solve_newton(context->newton,
-                                  next.u,
-                                  residual,
-                                  solve,
-                                  energy,
-                                  solid.length_scale(),
-                                  lifted,
-                                  unknowns ? &hooks : nullptr);
-    iterations.end(result.converged);
+    const auto newton = [&](const bool lifted_first) {
+      return context->newton.trust_region && energy
+               ? solvers::solve_trust_region(
+                 context->newton,
+                 next.u,
+                 residual,
+                 solve,
+                 [&](VectorType &Jv, const VectorType &v) {
+                   solid.jacobian().vmult(Jv, v);
+                 },
+                 energy,
+                 solid.length_scale())
+               : solvers::solve_newton(context->newton,
+                                       next.u,
+                                       residual,
+                                       solve,
+                                       energy,
+                                       solid.length_scale(),
+                                       lifted_first,
+                                       unknowns ? &hooks : nullptr);
+    };
+    solvers::NewtonResult result = newton(lifted);
+    const auto            count  = [&](const solvers::NewtonResult &r) {
+      report.jacobian_evaluations += r.jacobians;
+      report.newton_iterations += r.iterations;
+      report.assembly_seconds += r.assembly_seconds;
+      report.solve_seconds += r.solve_seconds;
+    };
+    count(result);
+    // The step controller weighs the first solve, which the step size
+    // decides (the re-solves take the multipliers' small corrections).
     last_iterations = result.iterations;
-    report.jacobian_evaluations += result.jacobians;
     // The factorization kept for the next step's lifting: this step's
     // (the lifting's, or Newton's last fresh one), if the step converged.
     if (!result.converged || motion < 0)
       kept_coefficient = -1;
     else if (result.jacobians > 0)
       kept_coefficient = c;
-    report.newton_iterations += result.iterations;
-    report.assembly_seconds += result.assembly_seconds;
-    report.solve_seconds += result.solve_seconds;
+    // Multipliers (an augmented-Lagrangian contact): solved again from
+    // the converged state, with a fresh Jacobian, until they settle.
+    for (unsigned int update = 0; result.converged; ++update)
+      {
+        std::string why;
+        const auto  status = solid.augment(next.u, t_new, update, why);
+        if (status == forces::Augmentation::satisfied)
+          break;
+        if (status == forces::Augmentation::failed)
+          return why;
+        result = newton(false);
+        count(result);
+        kept_coefficient = -1;
+      }
+    iterations.end(result.converged);
     if (!result.converged)
       return result.failure.empty() ? std::string("no convergence")
                                     : result.failure;

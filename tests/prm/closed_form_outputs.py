@@ -178,6 +178,8 @@ def contact_floor_bar_1d():
     for t in (0, 0.5, 1):
         lines.append("t = %s obstacle floor force = %s" % (fmt(t), fmt(0.1 * t)))
         lines.append("t = %s obstacle floor penetration = %s" % (fmt(t), fmt(0.1 * t / k)))
+        # The foot is a point (unit area weight): its pressure is the force.
+        lines.append("t = %s obstacle floor pressure range = %s %s" % (fmt(t), fmt(0.1 * t), fmt(0.1 * t)))
         for p, x in enumerate((0, 0.5, 1)):
             lines.append("t = %s probe %d u = %s" % (fmt(t), p, fmt(u(x, t) + 0.0)))
     nodes = [0, 0.25, 0.5, 0.75, 1]
@@ -205,6 +207,8 @@ def contact_floor_block_2d():
     for t in (0, 0.5, 1):
         lines.append("t = %s obstacle floor force = 0 %s" % (fmt(t), fmt(0.05 * t)))
         lines.append("t = %s obstacle floor penetration = %s" % (fmt(t), fmt(0.05 * t / k)))
+        # Uniform over the unit width: the weight.
+        lines.append("t = %s obstacle floor pressure range = %s %s" % (fmt(t), fmt(0.05 * t), fmt(0.05 * t)))
         for p, y in enumerate((0, 0.25, 0.5)):
             lines.append("t = %s probe %d u = 0 %s" % (fmt(t), p, fmt(u(y, t) + 0.0)))
     nodes = [0, 0.25, 0.5]
@@ -217,3 +221,37 @@ def contact_floor_block_2d():
 
 
 contact_floor_block_2d()
+
+
+def contact_patch(name, dim, cells, unknowns, probes, names=None):
+    # A rigid flat face pushed by 0.05 t into a block of height H = 0.5 on
+    # rollers, frictionless, linear elastic (E = 1, nu = 0.3): homogeneous
+    # uniaxial stress, eps = -0.1 t along the last axis, the other stresses
+    # zero (and plane strain in 2D: E' = E / (1 - nu^2), nu' = nu / (1 -
+    # nu)); the augmented Lagrangian leaves no gap, so the pressure is E'
+    # 0.1 t, uniform, on a unit area or width.
+    nu = 0.3
+    E1, nu1 = (1 / (1 - nu * nu), nu / (1 - nu)) if dim == 2 else (1.0, nu)
+    zero = " ".join(["0"] * dim)
+    lines = ["cells %d unknowns %d" % (cells, unknowns)]
+    for t in (0, 0.5, 1):
+        p = E1 * 0.1 * t
+        force = ["0"] * (dim - 1) + [fmt(-p + 0.0)]
+        lines.append("t = %s obstacle press force = %s" % (fmt(t), " ".join(force)))
+        lines.append("t = %s obstacle press penetration = 0" % fmt(t))
+        lines.append("t = %s obstacle press pressure range = %s %s" % (fmt(t), fmt(p), fmt(p)))
+        for i, X in enumerate(probes):
+            u = [nu1 * 0.1 * t * x for x in X[:-1]] + [-0.1 * t * X[-1]]
+            lines.append("t = %s probe %d u = %s" % (fmt(t), i, " ".join(fmt(c + 0.0) for c in u)))
+    # Psi V = 1/2 sigma eps V with V = 0.5 (unit cross-section, H = 0.5).
+    energy = 0.5 * E1 * 0.1 * 0.1 * 0.5
+    lines.append("final elastic energy " + fmt(energy))
+    for n in names or (name,):
+        with open(n + ".output", "w") as f:
+            f.write("\n".join(lines) + "\n")
+
+
+contact_patch("contact_patch_2d", 2, 8, 30, [(1, 0.5), (0.5, 0.25), (0.25, 0.5)])
+contact_patch("contact_patch_3d", 3, 20, 54,
+              [(1, 1, 0.5), (0.5, 0.5, 0.25), (0.3, 0.7, 0.5)],
+              ("contact_patch_3d", "contact_patch_3d.mpirun=2"))

@@ -11,8 +11,11 @@
 #include <tissuefem/solvers/newton.h>
 #include <tissuefem/time/interface.h>
 
+#include <cmath>
 #include <memory>
 #include <string>
+
+#include "../tests.h"
 
 namespace tissuefem_tests
 {
@@ -53,6 +56,52 @@ namespace tissuefem_tests
     solvers::NewtonParameters              newton_parameters;
     std::unique_ptr<solvers::LinearSolver> linear_solver;
   };
+
+
+  /**
+   * Central differences of step h = 1e-6 along @p d at @p u: checks that
+   * the residual of implicit_residual(u, u_tilde, c, t) is the derivative
+   * of implicit_energy() along d, and (unless @p jacobian is false: a
+   * projected tangent is no derivative) that the Jacobian times d is the
+   * residual's, both relatively below 1e-6. Leaves the Jacobian of u
+   * assembled.
+   */
+  template <int dim>
+  void
+  check_derivatives(solid::Solid<dim> &solid,
+                    const VectorType  &u,
+                    const VectorType  &u_tilde,
+                    const double       c,
+                    const double       t,
+                    const VectorType  &d,
+                    const std::string &name,
+                    const bool         jacobian = true)
+  {
+    const double h = 1e-6;
+    VectorType   r, r_plus, r_minus, Jd(u);
+    solid.implicit_residual(u, u_tilde, c, t, r, true);
+    solid.jacobian().vmult(Jd, d);
+    VectorType x(u);
+    x.add(h, d);
+    const double e_plus = solid.implicit_energy(x, u_tilde, c, t);
+    solid.implicit_residual(x, u_tilde, c, t, r_plus, false);
+    x.add(-2 * h, d);
+    const double e_minus = solid.implicit_energy(x, u_tilde, c, t);
+    solid.implicit_residual(x, u_tilde, c, t, r_minus, false);
+    const double slope = r * d;
+    check_small(std::abs((e_plus - e_minus) / (2 * h) - slope)
+                  / std::abs(slope),
+                1e-6,
+                name + ": residual . d against dE/dd");
+    if (!jacobian)
+      return;
+    r_plus -= r_minus;
+    r_plus /= 2 * h;
+    r_plus -= Jd;
+    check_small(r_plus.l2_norm() / Jd.l2_norm(),
+                1e-6,
+                name + ": J d against dR/dd");
+  }
 
 
   /**

@@ -45,6 +45,9 @@ namespace tissuefem::contact
     /// The name it carries in every output.
     std::string name;
 
+    /// Its subsection, 'Contact/Obstacle k', for messages.
+    std::string slot;
+
     /// Whether its motion names t.
     bool moves = false;
 

@@ -7,8 +7,12 @@
 #include <tissuefem/forces/interface.h>
 #include <tissuefem/solid/discretization.h>
 
+#include <boost/signals2/connection.hpp>
+
+#include <cstdint>
 #include <functional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace tissuefem::contact
@@ -34,12 +38,29 @@ namespace tissuefem::contact
    * its quadratic convergence with contact active. Points at g <= 0 count
    * in the tangent (so that a body that just touches is held on the first
    * iteration), points at g < 0 in the force.
+   *
+   * With 'Method = augmented Lagrangian' each point carries a multiplier
+   * lambda >= 0 (a pressure), the energy is (Powell-Hestenes-Rockafellar;
+   * Wriggers 2006, chapter 6; Simo and Laursen 1992)
+   *
+   *   E = sum over points of p^2 / (2 k) dA,   p = max(0, lambda - k g),
+   *
+   * (up to a constant of lambda), whose force is p n dA and whose tangent
+   * is k n (x) n - p dn/dx where p > 0, the penalty's at lambda = 0. After
+   * each converged solve of a step, Uzawa's update lambda <- p moves the
+   * multipliers towards the contact pressure, and the step is solved again
+   * until every point's gap is within 'Gap tolerance' (|g| where it is
+   * pressed, -g where it penetrates): the penetration then no longer
+   * depends on the penalty, which only sets how fast the updates converge.
+   * The multipliers carry over from step to step (a warm start) and are
+   * dropped when the mesh changes.
    */
   template <int dim>
   class PenaltyContact : public forces::Interface<dim>
   {
   public:
-    /// 'Contact/Penalty factor'.
+    /// 'Contact/Penalty factor', 'Method', 'Gap tolerance' and
+    /// 'Maximum multiplier updates'.
     static void
     declare_parameters(ParameterHandler &prm);
 
@@ -62,6 +83,13 @@ namespace tissuefem::contact
     double
     energy(const VectorType &u, const double time) const override;
 
+    /// Uzawa's update, with the augmented Lagrangian (see above).
+    forces::Augmentation
+    augment(const VectorType  &u,
+            const double       time,
+            const unsigned int update,
+            std::string       &message) override;
+
     /// Whether any obstacle moves.
     bool
     changes_with_time() const override
@@ -80,8 +108,12 @@ namespace tissuefem::contact
       Tensor<1, dim> force;
       /// The largest penetration, max(-g, 0) (length units).
       double penetration = 0;
-      /// The reference area in contact, g < 0 (length^(dim-1) units).
+      /// The reference area carrying a contact pressure
+      /// (length^(dim-1) units).
       double area = 0;
+      /// The smallest and the largest contact pressure over the contact
+      /// points that carry one (stress units; both 0 where none does).
+      double min_pressure = 0, max_pressure = 0;
     };
 
     std::vector<Report>
@@ -95,20 +127,24 @@ namespace tissuefem::contact
 
   private:
     /// One contact point: obstacle index, gap, penalty stiffness k,
-    /// reference area weight dA, point index q of the face.
+    /// reference area weight dA, point index q of the face, its key in
+    /// the multipliers, and its pressure p = max(0, lambda - k g).
     struct Point_
     {
-      unsigned int obstacle;
-      Gap<dim>     gap;
-      double       k;
-      double       area;
-      unsigned int q;
+      unsigned int  obstacle;
+      Gap<dim>      gap;
+      double        k;
+      double        area;
+      unsigned int  q;
+      std::uint64_t key;
+      double        pressure;
     };
 
     /**
      * Calls @p face(fe_face_values, dofs, points) for each boundary face of
-     * each locally owned cell with at least one point at g <= 0, for the
-     * ghosted displacement @p u at @p time.
+     * each locally owned cell with at least one point where lambda - k g
+     * >= 0 (g <= 0 without multipliers), for the ghosted displacement @p u
+     * at @p time.
      */
     void
     for_each_face(
@@ -122,5 +158,14 @@ namespace tissuefem::contact
     std::vector<Obstacle<dim>>        obstacle_list;
     double                            factor;
     double                            modulus;
+    bool                              augmented;
+    /// 'Gap tolerance' resolved to length units.
+    double       tolerance;
+    unsigned int max_updates;
+    /// The multipliers lambda (stress units) of the points that carry
+    /// one, by key (active cell index, face, point) on this process.
+    std::unordered_map<std::uint64_t, double> multipliers;
+    /// Drops the multipliers when the mesh changes.
+    boost::signals2::scoped_connection mesh_changed;
   };
 } // namespace tissuefem::contact

@@ -4,9 +4,22 @@
 
 #include <tissuefem/base/parallel.h>
 
+#include <string>
+
 namespace tissuefem::forces
 {
   using namespace dealii;
+
+  /// What a contribution's multiplier update found (Interface::augment()).
+  enum class Augmentation
+  {
+    /// Its constraints hold to their tolerance: the step is done.
+    satisfied,
+    /// The multipliers moved: the step is solved again with them.
+    again,
+    /// It gave up (the message says why): the step failed.
+    failed
+  };
 
   /**
    * A force on the solid that does not come from its elements, derived
@@ -45,6 +58,27 @@ namespace tissuefem::forces
     /// E(u, t) (energy units), summed over the processes.
     virtual double
     energy(const VectorType &u, const double time) const = 0;
+
+    /**
+     * After Newton has converged at the ghosted displacement @p u at
+     * @p time, for the @p update-th time in this step (from 0): a
+     * contribution that enforces a constraint with multipliers (the
+     * augmented Lagrangian's Uzawa update) updates them and says whether
+     * the step must be solved again, with the reason in @p message if it
+     * gives up. A plain penalty has nothing to update.
+     */
+    virtual Augmentation
+    augment(const VectorType  &u,
+            const double       time,
+            const unsigned int update,
+            std::string       &message)
+    {
+      (void)u;
+      (void)time;
+      (void)update;
+      (void)message;
+      return Augmentation::satisfied;
+    }
 
     /// Whether E depends on t itself (a moving obstacle): then a quasistatic
     /// step that fails may succeed when shorter.

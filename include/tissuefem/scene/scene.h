@@ -76,7 +76,7 @@ namespace tissuefem
     std::map<std::string, std::unique_ptr<tool::Interface<dim>>> tools;
     /// Contact with the rigid obstacles of 'Contact' (none: null), also
     /// handed to the solid as a force contribution.
-    std::shared_ptr<const contact::PenaltyContact<dim>> obstacle_contact;
+    std::shared_ptr<contact::PenaltyContact<dim>> obstacle_contact;
 
   private:
     /// Initial and boundary data must be finite where they are used.

@@ -3,6 +3,7 @@
 #include <deal.II/base/index_set.h>
 
 #include <tissuefem/base/parallel.h>
+#include <tissuefem/forces/interface.h>
 #include <tissuefem/solid/iteration_unknowns.h>
 
 #include <limits>
@@ -233,6 +234,26 @@ namespace tissuefem::solid
     begin_step(const VectorType &u)
     {
       (void)u;
+    }
+
+    /**
+     * After an implicit step's Newton solve has converged at @p u (at
+     * @p time, the @p update-th time in this step, from 0): the force
+     * contributions with multipliers (an augmented-Lagrangian contact)
+     * update them (forces::Interface::augment()). Returns the least
+     * settled answer of them: failed before again before satisfied.
+     */
+    virtual forces::Augmentation
+    augment(const VectorType  &u,
+            const double       time,
+            const unsigned int update,
+            std::string       &message)
+    {
+      (void)u;
+      (void)time;
+      (void)update;
+      (void)message;
+      return forces::Augmentation::satisfied;
     }
 
     /// Unknowns Newton must update alongside u (the three-field mean

@@ -68,7 +68,7 @@ namespace tissuefem::solid
      */
     void
     add_force_contribution(
-      std::shared_ptr<const forces::Interface<dim>> contribution)
+      std::shared_ptr<forces::Interface<dim>> contribution)
     {
       contributions.push_back(std::move(contribution));
     }
@@ -246,6 +246,12 @@ namespace tissuefem::solid
     void
     begin_step(const VectorType &u) override;
 
+    forces::Augmentation
+    augment(const VectorType  &u,
+            const double       time,
+            const unsigned int update,
+            std::string       &message) override;
+
     /// The three-field form of the mean dilatation element
     /// (ThreeFieldDilatation) where the formulation is 'mean dilatation'.
     IterationUnknowns *
@@ -385,10 +391,12 @@ namespace tissuefem::solid
                       const bool   jacobian,
                       ScratchType &s) const;
 
-    /// The stored energy, with the carried cell dilatations of @p time
-    /// where @p carry_time is given (implicit_energy()).
+    /// The stored energy of the ghosted displacement @p ghosted (as
+    /// make_ghosted() sets it), with the carried cell dilatations of
+    /// @p time where @p carry_time is given (implicit_energy()).
     double
-    stored_energy_with(const VectorType &u, const double *carry_time) const;
+    stored_energy_with(const VectorType &ghosted,
+                       const double     *carry_time) const;
 
     /// The pieces of assemble()'s cell worker (solid_assembly.cc), in the
     /// order it calls them.
@@ -535,7 +543,7 @@ namespace tissuefem::solid
     /// Ghosted copies of the arguments, reused between calls.
     VectorType ghosted_u, ghosted_w;
     /// Forces that do not come from the elements (add_force_contribution).
-    std::vector<std::shared_ptr<const forces::Interface<dim>>> contributions;
+    std::vector<std::shared_ptr<forces::Interface<dim>>> contributions;
 
     /// Adds the contributions' terms of an assembly that asks for internal
     /// forces, before the caller compresses.
