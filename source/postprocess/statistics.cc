@@ -22,7 +22,7 @@ namespace tissuefem::postprocess
     file << "step,time,dt,newton_iterations,linear_iterations,"
             "rejected_attempts,final_residual_norm,assembly_seconds,"
             "solve_seconds,step_seconds,substeps,jacobian_evaluations,"
-            "stored_energy,kinetic_energy,damping_work\n";
+            "stored_energy,kinetic_energy,damping_work,multiplier_updates\n";
   }
 
 
@@ -63,7 +63,8 @@ namespace tissuefem::postprocess
          << s.rejected_attempts << ',' << s.residual_norm << ','
          << s.assembly_seconds << ',' << s.solve_seconds << ','
          << s.step_seconds << ',' << s.substeps << ',' << s.jacobian_evaluations
-         << ',' << stored << ',' << kinetic << ',' << damping_work << std::endl;
+         << ',' << stored << ',' << kinetic << ',' << damping_work << ','
+         << s.multiplier_updates << std::endl;
   }
 
   template class Statistics<1>;
@@ -74,5 +75,5 @@ namespace tissuefem::postprocess
     Statistics,
     "statistics",
     "statistics.csv: per step, time, step size, iterations, wall times, "
-    "energies and damping work.")
+    "energies, damping work and contact multiplier updates.")
 } // namespace tissuefem::postprocess

@@ -277,6 +277,7 @@ namespace tissuefem::time
           return why;
         result = newton(false);
         count(result);
+        ++report.multiplier_updates;
         kept_coefficient = -1;
       }
     iterations.end(result.converged);

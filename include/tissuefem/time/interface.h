@@ -65,6 +65,9 @@ namespace tissuefem::time
     unsigned int substeps = 1;
     /// Jacobians evaluated (assembled or differenced) in this call.
     unsigned int jacobian_evaluations = 0;
+    /// Re-solves of the step for contact multipliers that moved (the
+    /// augmented Lagrangian's Uzawa updates, Operators::augment()).
+    unsigned int multiplier_updates = 0;
     /// Energy taken out by the integrator's damping force in this call
     /// (energy units; 0 without damping).
     double damping_work = 0;
