@@ -37,6 +37,15 @@ namespace tissuefem::contact
           "';' (the first dim are used), or one for all. The shape moves "
           "rigidly: "
           "contact pushes the tissue, never the obstacle.");
+        prm.declare_entry(
+          "Friction coefficient",
+          "0",
+          Patterns::Double(0),
+          "Coulomb's coefficient mu between this obstacle and the tissue "
+          "(dimensionless, >= 0; 0 is frictionless): a contact point "
+          "sticks while its tangential traction is below mu times its "
+          "contact pressure and slides against it otherwise. Needs "
+          "'Contact/Method = augmented Lagrangian'.");
         shapes.declare_parameters(prm);
         prm.leave_subsection();
       }
@@ -69,7 +78,8 @@ namespace tissuefem::contact
               require(other.name != obstacle.name,
                       "Contact/" + slot + "/Name",
                       "'" + obstacle.name + "' names two obstacles");
-            obstacle.moves = names_variable(prm.get("Motion"), "t");
+            obstacle.moves    = names_variable(prm.get("Motion"), "t");
+            obstacle.friction = prm.get_double("Friction coefficient");
             obstacle.motion
               = make_function<dim>(leading_entries(prm.get("Motion"), ';', dim),
                                    dim,

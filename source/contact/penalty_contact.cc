@@ -6,6 +6,7 @@
 #include <tissuefem/base/input_error.h>
 #include <tissuefem/base/nan_aware.h>
 #include <tissuefem/base/parallel.h>
+#include <tissuefem/contact/coulomb.h>
 #include <tissuefem/contact/penalty_contact.h>
 
 #include <algorithm>
@@ -82,8 +83,26 @@ namespace tissuefem::contact
     if (tolerance == 0)
       tolerance = 1e-4 * GridTools::diameter(triangulation);
     // Keys name active cells, whose numbering a mesh change redraws.
-    mesh_changed = triangulation.signals.any_change.connect(
-      [this]() { multipliers.clear(); });
+    mesh_changed = triangulation.signals.any_change.connect([this]() {
+      states.clear();
+      step_start.clear();
+    });
+    for (const auto &obstacle : obstacle_list)
+      require(obstacle.friction == 0 || augmented,
+              obstacle.slot + "/Friction coefficient",
+              "needs 'Contact/Method = augmented Lagrangian' (the friction "
+              "bound is mu times the contact multiplier)");
+  }
+
+
+  template <int dim>
+  bool
+  PenaltyContact<dim>::has_friction() const
+  {
+    for (const auto &obstacle : obstacle_list)
+      if (obstacle.friction > 0)
+        return true;
+    return false;
   }
 
 
@@ -94,7 +113,8 @@ namespace tissuefem::contact
     const double                                            time,
     const std::function<void(const FEFaceValues<dim> &,
                              const std::vector<types::global_dof_index> &,
-                             const std::vector<Point_> &)> &face) const
+                             const std::vector<Point_> &)> &face,
+    const bool                                              near) const
   {
     if (obstacle_list.empty())
       return;
@@ -134,23 +154,36 @@ namespace tissuefem::contact
                   for (unsigned int o = 0; o < obstacle_list.size(); ++o)
                     {
                       const Gap<dim> gap = obstacle_list[o].gap(x, offsets[o]);
-                      const std::uint64_t key    = first + q * n_obs + o;
-                      double              lambda = 0;
-                      if (!multipliers.empty())
-                        if (const auto m = multipliers.find(key);
-                            m != multipliers.end())
-                          lambda = m->second;
+                      const std::uint64_t key   = first + q * n_obs + o;
+                      const State        *state = nullptr;
+                      if (!states.empty())
+                        if (const auto s = states.find(key); s != states.end())
+                          state = &s->second;
+                      const double lambda = state ? state->lambda : 0.;
                       // Active where lambda - k g >= 0; NaN gaps pass
                       // too, to be seen by Newton's checks.
-                      if (!(lambda - k * gap.distance < 0))
-                        points.push_back(
-                          {o,
-                           gap,
-                           k,
-                           values.JxW(q),
-                           q,
-                           key,
-                           std::max(0., lambda - k * gap.distance)});
+                      if (lambda - k * gap.distance < 0
+                          && !(near && gap.distance < cell->diameter()))
+                        continue;
+                      const Point<dim> *anchor = nullptr;
+                      if (obstacle_list[o].friction > 0)
+                        {
+                          if (state && state->anchored)
+                            anchor = &state->anchor;
+                          else if (const auto a = step_start.find(key);
+                                   a != step_start.end())
+                            anchor = &a->second;
+                        }
+                      points.push_back({o,
+                                        gap,
+                                        k,
+                                        values.JxW(q),
+                                        q,
+                                        key,
+                                        std::max(0., lambda - k * gap.distance),
+                                        x - offsets[o],
+                                        anchor,
+                                        obstacle_list[o].friction * lambda});
                     }
                 }
               if (points.empty())
@@ -198,6 +231,17 @@ namespace tissuefem::contact
                     += stiffness * n_i * (p.gap.normal * phi[j])
                        - force * (phi[i] * (p.gap.normal_gradient * phi[j]));
             }
+          if (!p.anchor || p.pressure == 0)
+            continue;
+          // Coulomb friction: dE/du_i = -traction . phi_i dA.
+          const Coulomb<dim> law(p.y, *p.anchor, p.gap.normal, p.k, p.bound);
+          for (unsigned int i = 0; i < n; ++i)
+            {
+              r(i) -= p.area * (law.traction * phi[i]);
+              if (jacobian)
+                for (unsigned int j = 0; j < n; ++j)
+                  K(i, j) += p.area * (phi[i] * (law.tangent * phi[j]));
+            }
         }
       if (jacobian)
         rows.distribute_local_to_global(
@@ -218,7 +262,13 @@ namespace tissuefem::contact
                     const std::vector<types::global_dof_index> &,
                     const std::vector<Point_> &points) {
       for (const Point_ &p : points)
-        sum += 0.5 * p.pressure * p.pressure / p.k * p.area;
+        {
+          sum += 0.5 * p.pressure * p.pressure / p.k * p.area;
+          if (p.anchor && p.pressure > 0)
+            sum += p.area
+                   * Coulomb<dim>(p.y, *p.anchor, p.gap.normal, p.k, p.bound)
+                       .potential;
+        }
     };
     for_each_face(u, time, face);
     return Utilities::MPI::sum(sum, parallel_tools::communicator());
@@ -240,9 +290,14 @@ namespace tissuefem::contact
           const unsigned int o = p.obstacle;
           if (p.pressure > 0)
             {
-              double *s = &sums[o * (dim + 1)];
+              double        *s        = &sums[o * (dim + 1)];
+              Tensor<1, dim> traction = p.pressure * p.gap.normal;
+              if (p.anchor)
+                traction
+                  += Coulomb<dim>(p.y, *p.anchor, p.gap.normal, p.k, p.bound)
+                       .traction;
               for (unsigned int d = 0; d < dim; ++d)
-                s[d] += p.pressure * p.area * p.gap.normal[d];
+                s[d] += p.area * traction[d];
               s[dim] += p.area;
               highest[o] = max_keeping_nan(highest[o], p.pressure);
               lowest[o]  = std::min(lowest[o], p.pressure);
@@ -278,9 +333,10 @@ namespace tissuefem::contact
   {
     if (!augmented)
       return forces::Augmentation::satisfied;
-    // Uzawa: lambda <- p at every point; points left out have p = 0.
-    std::unordered_map<std::uint64_t, double> updated;
-    double                                    worst = 0;
+    // Uzawa: lambda <- p at every point, stick points kept; points left
+    // out have p = 0.
+    std::unordered_map<std::uint64_t, State> updated;
+    double                                   worst = 0;
     auto face = [&](const FEFaceValues<dim> &,
                     const std::vector<types::global_dof_index> &,
                     const std::vector<Point_> &points) {
@@ -289,11 +345,17 @@ namespace tissuefem::contact
           const double g = p.gap.distance;
           worst = max_keeping_nan(worst, p.pressure > 0 ? std::abs(g) : -g);
           if (p.pressure > 0)
-            updated.emplace(p.key, p.pressure);
+            {
+              State state;
+              if (const auto s = states.find(p.key); s != states.end())
+                state = s->second;
+              state.lambda = p.pressure;
+              updated.emplace(p.key, state);
+            }
         }
     };
     for_each_face(u, time, face);
-    multipliers.swap(updated);
+    states.swap(updated);
     worst = mpi_max_keeping_nan(worst, parallel_tools::communicator());
     if (worst <= tolerance)
       return forces::Augmentation::satisfied;
@@ -307,6 +369,55 @@ namespace tissuefem::contact
            "larger 'Contact/Penalty factor' converges in fewer)";
     message = why.str();
     return forces::Augmentation::failed;
+  }
+
+
+  template <int dim>
+  void
+  PenaltyContact<dim>::begin_step(const VectorType &u, const double time)
+  {
+    if (!has_friction())
+      return;
+    // Collected apart: for_each_face() reads step_start.
+    std::unordered_map<std::uint64_t, Point<dim>> started;
+    auto face = [&](const FEFaceValues<dim> &,
+                    const std::vector<types::global_dof_index> &,
+                    const std::vector<Point_> &points) {
+      for (const Point_ &p : points)
+        if (obstacle_list[p.obstacle].friction > 0)
+          started.emplace(p.key, p.y);
+    };
+    for_each_face(u, time, face, true);
+    step_start.swap(started);
+  }
+
+
+  template <int dim>
+  void
+  PenaltyContact<dim>::accept_step(const VectorType &u, const double time)
+  {
+    if (!has_friction())
+      return;
+    // The stick points of the step's end (the points still in contact keep
+    // a state; a point without a stick point takes where it is).
+    std::vector<std::pair<std::uint64_t, Point<dim>>> moved;
+    auto face = [&](const FEFaceValues<dim> &,
+                    const std::vector<types::global_dof_index> &,
+                    const std::vector<Point_> &points) {
+      for (const Point_ &p : points)
+        if (obstacle_list[p.obstacle].friction > 0 && p.pressure > 0)
+          moved.emplace_back(p.key,
+                             p.anchor ? Coulomb<dim>::new_anchor(
+                               p.y, *p.anchor, p.gap.normal, p.k, p.bound)
+                                      : p.y);
+    };
+    for_each_face(u, time, face);
+    for (const auto &[key, anchor] : moved)
+      if (const auto s = states.find(key); s != states.end())
+        {
+          s->second.anchor   = anchor;
+          s->second.anchored = true;
+        }
   }
 
 

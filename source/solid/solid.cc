@@ -266,8 +266,14 @@ namespace tissuefem::solid
 
   template <int dim>
   void
-  Solid<dim>::begin_step(const VectorType &u)
+  Solid<dim>::begin_step(const VectorType &u, const double time)
   {
+    if (!contributions.empty())
+      {
+        make_ghosted(u, ghosted_u);
+        for (const auto &contribution : contributions)
+          contribution->begin_step(ghosted_u, time);
+      }
     step_contact_force.clear();
     if (boundary_conditions.self_contact_pressure == 0)
       return;
@@ -278,6 +284,18 @@ namespace tissuefem::solid
                       boundary_conditions.self_contact_pressure,
                       discretization.constraints,
                       step_contact_force);
+  }
+
+
+  template <int dim>
+  void
+  Solid<dim>::accept_step(const VectorType &u, const double time)
+  {
+    if (contributions.empty())
+      return;
+    make_ghosted(u, ghosted_u);
+    for (const auto &contribution : contributions)
+      contribution->accept_step(ghosted_u, time);
   }
 
 

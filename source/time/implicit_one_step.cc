@@ -176,7 +176,7 @@ namespace tissuefem::time
     if (next.u.size() != state.u.size())
       solid.initialize_vector(next.u);
     predict(state, h, u_tilde, next.u);
-    solid.begin_step(state.u);
+    solid.begin_step(state.u, state.time);
     // The three-field element's cell unknowns ('Newton solver/Mean
     // dilatation update'): Newton updates them with u within this step.
     solid::IterationUnknowns *unknowns = context->newton.three_field_dilatation
@@ -290,6 +290,7 @@ namespace tissuefem::time
     // prescribed values, unchanged) in the state.
     solid.apply_dirichlet_values(t_new, next.u);
     finish(state, u_tilde, h, next);
+    solid.accept_step(next.u, t_new);
     return {};
   }
 

@@ -7,7 +7,8 @@
 // 3D, on Q1, P1 and Q2 cells; and again with the augmented Lagrangian's
 // multipliers taken from another state (Uzawa's update), so that points
 // carry a pressure lambda - k g both where they penetrate and where their
-// gap is open.
+// gap is open, and with Coulomb friction on the (flat) floor, stick points
+// at that other state.
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
@@ -79,7 +80,9 @@ namespace
         prm.parse_input_from_string(text);
         if (augmented)
           prm.parse_input_from_string(
-            "subsection Contact\n set Method = augmented Lagrangian\nend\n",
+            "subsection Contact\n set Method = augmented Lagrangian\n"
+            " subsection Obstacle 3\n  set Friction coefficient = 0.4\n"
+            " end\nend\n",
             "",
             true);
         tissuefem_tests::SolidScene<dim> scene(prm);
@@ -107,6 +110,8 @@ namespace
             std::string message;
             for (const auto i : shifted.locally_owned_elements())
               shifted[i] -= 0.006;
+            // The step starts there: the floor's stick points.
+            solid.begin_step(shifted, t);
             tissuefem_tests::check(solid.augment(shifted, t, 0, message)
                                      == forces::Augmentation::again,
                                    label + ": the multipliers move",

@@ -48,6 +48,10 @@ namespace tissuefem::contact
     /// Its subsection, 'Contact/Obstacle k', for messages.
     std::string slot;
 
+    /// Coulomb's friction coefficient between it and the tissue
+    /// (dimensionless; 0: frictionless).
+    double friction = 0;
+
     /// Whether its motion names t.
     bool moves = false;
 

@@ -54,6 +54,13 @@ namespace tissuefem::contact
    * depends on the penalty, which only sets how fast the updates converge.
    * The multipliers carry over from step to step (a warm start) and are
    * dropped when the mesh changes.
+   *
+   * With an obstacle's 'Friction coefficient' mu > 0 (augmented Lagrangian
+   * only), a point in contact also carries a stick point, and Coulomb's
+   * law (coulomb.h) with the bound mu lambda adds its tangential force.
+   * A point that comes into contact during a step starts from where it was
+   * at the step's start (begin_step()); the stick points move only when a
+   * step is accepted (accept_step()).
    */
   template <int dim>
   class PenaltyContact : public forces::Interface<dim>
@@ -82,6 +89,15 @@ namespace tissuefem::contact
 
     double
     energy(const VectorType &u, const double time) const override;
+
+    /// Notes where the points near an obstacle with friction start the
+    /// step.
+    void
+    begin_step(const VectorType &u, const double time) override;
+
+    /// Moves the stick points of the points that slid.
+    void
+    accept_step(const VectorType &u, const double time) override;
 
     /// Uzawa's update, with the augmented Lagrangian (see above).
     forces::Augmentation
@@ -128,23 +144,39 @@ namespace tissuefem::contact
   private:
     /// One contact point: obstacle index, gap, penalty stiffness k,
     /// reference area weight dA, point index q of the face, its key in
-    /// the multipliers, and its pressure p = max(0, lambda - k g).
+    /// the contact states, its pressure p = max(0, lambda - k g), its
+    /// position y in the obstacle's frame, and with friction its stick
+    /// point (null: none) and friction bound mu lambda.
     struct Point_
     {
-      unsigned int  obstacle;
-      Gap<dim>      gap;
-      double        k;
-      double        area;
-      unsigned int  q;
-      std::uint64_t key;
-      double        pressure;
+      unsigned int      obstacle;
+      Gap<dim>          gap;
+      double            k;
+      double            area;
+      unsigned int      q;
+      std::uint64_t     key;
+      double            pressure;
+      Point<dim>        y;
+      const Point<dim> *anchor;
+      double            bound;
+    };
+
+    /// What a contact point carries from solve to solve: its multiplier
+    /// lambda (stress units) and, with friction, its stick point (in the
+    /// obstacle's frame) once a step has been accepted in contact.
+    struct State
+    {
+      double     lambda   = 0;
+      bool       anchored = false;
+      Point<dim> anchor;
     };
 
     /**
      * Calls @p face(fe_face_values, dofs, points) for each boundary face of
      * each locally owned cell with at least one point where lambda - k g
      * >= 0 (g <= 0 without multipliers), for the ghosted displacement @p u
-     * at @p time.
+     * at @p time; with @p near, every point closer to an obstacle than
+     * its cell's diameter.
      */
     void
     for_each_face(
@@ -152,7 +184,12 @@ namespace tissuefem::contact
       const double                                            time,
       const std::function<void(const FEFaceValues<dim> &,
                                const std::vector<types::global_dof_index> &,
-                               const std::vector<Point_> &)> &face) const;
+                               const std::vector<Point_> &)> &face,
+      const bool near = false) const;
+
+    /// Whether some obstacle has friction.
+    bool
+    has_friction() const;
 
     const solid::Discretization<dim> &discretization;
     std::vector<Obstacle<dim>>        obstacle_list;
@@ -162,10 +199,14 @@ namespace tissuefem::contact
     /// 'Gap tolerance' resolved to length units.
     double       tolerance;
     unsigned int max_updates;
-    /// The multipliers lambda (stress units) of the points that carry
-    /// one, by key (active cell index, face, point) on this process.
-    std::unordered_map<std::uint64_t, double> multipliers;
-    /// Drops the multipliers when the mesh changes.
+    /// The states of the points that carry a multiplier, by key (active
+    /// cell index, face, point, obstacle) on this process.
+    std::unordered_map<std::uint64_t, State> states;
+    /// With friction: where the points near an obstacle were at the start
+    /// of the step (obstacle frame), the stick point of those that come
+    /// into contact in it.
+    std::unordered_map<std::uint64_t, Point<dim>> step_start;
+    /// Drops the states when the mesh changes.
     boost::signals2::scoped_connection mesh_changed;
   };
 } // namespace tissuefem::contact

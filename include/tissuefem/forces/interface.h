@@ -80,6 +80,25 @@ namespace tissuefem::forces
       return Augmentation::satisfied;
     }
 
+    /// At the start of each attempt at an implicit step, from the ghosted
+    /// @p u at @p time: a contribution with history (friction's stick
+    /// points) notes where the step starts.
+    virtual void
+    begin_step(const VectorType &u, const double time)
+    {
+      (void)u;
+      (void)time;
+    }
+
+    /// When a step has been accepted at the ghosted @p u at @p time: a
+    /// contribution with history commits it.
+    virtual void
+    accept_step(const VectorType &u, const double time)
+    {
+      (void)u;
+      (void)time;
+    }
+
     /// Whether E depends on t itself (a moving obstacle): then a quasistatic
     /// step that fails may succeed when shorter.
     virtual bool

@@ -226,14 +226,26 @@ namespace tissuefem::solid
 
     /**
      * Takes the loads that depend on the state (self contact,
-     * 'Boundary conditions/Self contact pressure') from @p u, the start of
-     * the implicit step about to be taken: implicit_residual() and
-     * implicit_energy() then hold them as dead loads over the step.
+     * 'Boundary conditions/Self contact pressure') from @p u at @p time,
+     * the start of the implicit step about to be taken: implicit_residual()
+     * and implicit_energy() then hold them as dead loads over the step.
+     * Force contributions with history (friction) note the step's start.
      */
     virtual void
-    begin_step(const VectorType &u)
+    begin_step(const VectorType &u, const double time)
     {
       (void)u;
+      (void)time;
+    }
+
+    /// The implicit step begun last has been accepted at @p u, @p time:
+    /// force contributions with history (friction's stick points) commit
+    /// it.
+    virtual void
+    accept_step(const VectorType &u, const double time)
+    {
+      (void)u;
+      (void)time;
     }
 
     /**

@@ -67,8 +67,7 @@ namespace tissuefem::solid
      * assembled, its E in implicit_energy().
      */
     void
-    add_force_contribution(
-      std::shared_ptr<forces::Interface<dim>> contribution)
+    add_force_contribution(std::shared_ptr<forces::Interface<dim>> contribution)
     {
       contributions.push_back(std::move(contribution));
     }
@@ -244,7 +243,10 @@ namespace tissuefem::solid
 
     /// The self-contact force (self_contact.h) at @p u.
     void
-    begin_step(const VectorType &u) override;
+    begin_step(const VectorType &u, const double time) override;
+
+    void
+    accept_step(const VectorType &u, const double time) override;
 
     forces::Augmentation
     augment(const VectorType  &u,
