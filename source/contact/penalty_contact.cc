@@ -58,6 +58,16 @@ namespace tissuefem::contact
       "Augmented Lagrangian: the updates a step may take to bring every "
       "gap within 'Gap tolerance'; beyond, the step fails (and may be "
       "retried shorter).");
+    prm.declare_entry(
+      "Tangential penalty ratio",
+      "0.01",
+      Patterns::Double(1e-12, 1),
+      "Friction (an obstacle's 'Friction coefficient' > 0): the tangential "
+      "penalty over the normal one (dimensionless, in (0, 1]). A stuck point "
+      "sticks exactly once the multiplier updates settle, whatever the "
+      "ratio; a stiff tangential penalty leaves Newton a narrow band "
+      "between sticking and sliding, where it crawls, and a soft one takes "
+      "more updates.");
     prm.leave_subsection();
   }
 
@@ -77,6 +87,7 @@ namespace tissuefem::contact
     augmented   = prm.get("Method") == "augmented Lagrangian";
     tolerance   = prm.get_double("Gap tolerance");
     max_updates = prm.get_integer("Maximum multiplier updates");
+    tangential  = prm.get_double("Tangential penalty ratio");
     prm.leave_subsection();
     require(factor > 0, "Contact/Penalty factor", "must be > 0");
     const auto &triangulation = discretization.dof_handler.get_triangulation();
@@ -92,6 +103,15 @@ namespace tissuefem::contact
               obstacle.slot + "/Friction coefficient",
               "needs 'Contact/Method = augmented Lagrangian' (the friction "
               "bound is mu times the contact multiplier)");
+  }
+
+
+  template <int dim>
+  Coulomb<dim>
+  PenaltyContact<dim>::friction(const Point_ &p) const
+  {
+    return Coulomb<dim>(
+      p.y, *p.anchor, p.gap.normal, tangential * p.k, p.bound, p.tau);
   }
 
 
@@ -162,8 +182,12 @@ namespace tissuefem::contact
                       const double lambda = state ? state->lambda : 0.;
                       // Active where lambda - k g >= 0; NaN gaps pass
                       // too, to be seen by Newton's checks.
-                      if (lambda - k * gap.distance < 0
-                          && !(near && gap.distance < cell->diameter()))
+                      // A point with a friction bound stays while its
+                      // multiplier does, so that the friction potential
+                      // stays continuous over the solve.
+                      const bool active = !(lambda - k * gap.distance < 0);
+                      if (!active && !(near && gap.distance < cell->diameter())
+                          && !(obstacle_list[o].friction > 0 && lambda > 0))
                         continue;
                       const Point<dim> *anchor = nullptr;
                       if (obstacle_list[o].friction > 0)
@@ -181,9 +205,11 @@ namespace tissuefem::contact
                                         q,
                                         key,
                                         std::max(0., lambda - k * gap.distance),
+                                        active,
                                         x - offsets[o],
                                         anchor,
-                                        obstacle_list[o].friction * lambda});
+                                        obstacle_list[o].friction * lambda,
+                                        state ? state->tau : Tensor<1, dim>()});
                     }
                 }
               if (points.empty())
@@ -219,7 +245,7 @@ namespace tissuefem::contact
           const double stiffness = p.k * p.area, force = p.pressure * p.area;
           for (unsigned int i = 0; i < n; ++i)
             phi[i] = values[displacement].value(i, p.q);
-          for (unsigned int i = 0; i < n; ++i)
+          for (unsigned int i = 0; p.active && i < n; ++i)
             {
               const double n_i = p.gap.normal * phi[i];
               // dE/du_i = -p dg/du_i dA, dg/du_i = n . phi_i; d2E/du_i du_j
@@ -231,10 +257,10 @@ namespace tissuefem::contact
                     += stiffness * n_i * (p.gap.normal * phi[j])
                        - force * (phi[i] * (p.gap.normal_gradient * phi[j]));
             }
-          if (!p.anchor || p.pressure == 0)
+          if (!p.anchor || p.bound == 0)
             continue;
           // Coulomb friction: dE/du_i = -traction . phi_i dA.
-          const Coulomb<dim> law(p.y, *p.anchor, p.gap.normal, p.k, p.bound);
+          const Coulomb<dim> law = friction(p);
           for (unsigned int i = 0; i < n; ++i)
             {
               r(i) -= p.area * (law.traction * phi[i]);
@@ -264,10 +290,8 @@ namespace tissuefem::contact
       for (const Point_ &p : points)
         {
           sum += 0.5 * p.pressure * p.pressure / p.k * p.area;
-          if (p.anchor && p.pressure > 0)
-            sum += p.area
-                   * Coulomb<dim>(p.y, *p.anchor, p.gap.normal, p.k, p.bound)
-                       .potential;
+          if (p.anchor && p.bound > 0)
+            sum += p.area * friction(p).potential;
         }
     };
     for_each_face(u, time, face);
@@ -288,16 +312,16 @@ namespace tissuefem::contact
       for (const Point_ &p : points)
         {
           const unsigned int o = p.obstacle;
+          // The force as add() applies it: friction wherever it has a
+          // bound.
+          Tensor<1, dim> traction = p.pressure * p.gap.normal;
+          if (p.anchor && p.bound > 0)
+            traction += friction(p).traction;
+          double *s = &sums[o * (dim + 1)];
+          for (unsigned int d = 0; d < dim; ++d)
+            s[d] += p.area * traction[d];
           if (p.pressure > 0)
             {
-              double        *s        = &sums[o * (dim + 1)];
-              Tensor<1, dim> traction = p.pressure * p.gap.normal;
-              if (p.anchor)
-                traction
-                  += Coulomb<dim>(p.y, *p.anchor, p.gap.normal, p.k, p.bound)
-                       .traction;
-              for (unsigned int d = 0; d < dim; ++d)
-                s[d] += p.area * traction[d];
               s[dim] += p.area;
               highest[o] = max_keeping_nan(highest[o], p.pressure);
               lowest[o]  = std::min(lowest[o], p.pressure);
@@ -333,8 +357,8 @@ namespace tissuefem::contact
   {
     if (!augmented)
       return forces::Augmentation::satisfied;
-    // Uzawa: lambda <- p at every point, stick points kept; points left
-    // out have p = 0.
+    // Uzawa: lambda <- p and tau <- t at every point, stick points kept;
+    // points left out have p = 0 and lose their state.
     std::unordered_map<std::uint64_t, State> updated;
     double                                   worst = 0;
     auto face = [&](const FEFaceValues<dim> &,
@@ -350,6 +374,14 @@ namespace tissuefem::contact
               if (const auto s = states.find(p.key); s != states.end())
                 state = s->second;
               state.lambda = p.pressure;
+              if (p.anchor)
+                {
+                  // tau <- t; how far it moves, over k, is the slip the
+                  // penalty lets a stuck point take (length units).
+                  const Tensor<1, dim> t = friction(p).traction;
+                  worst     = max_keeping_nan(worst, (t - p.tau).norm() / p.k);
+                  state.tau = t;
+                }
               updated.emplace(p.key, state);
             }
         }
@@ -362,9 +394,10 @@ namespace tissuefem::contact
     if (update + 1 < max_updates && std::isfinite(worst))
       return forces::Augmentation::again;
     std::ostringstream why;
-    why << "the augmented Lagrangian left a gap of " << worst
-        << " (length units; 'Contact/Gap tolerance' " << tolerance << ") after "
-        << update + 1
+    why << "the augmented Lagrangian left a gap (or a stuck point's slip) "
+           "of "
+        << worst << " (length units; 'Contact/Gap tolerance' " << tolerance
+        << ") after " << update + 1
         << " multiplier updates ('Contact/Maximum multiplier updates'; a "
            "larger 'Contact/Penalty factor' converges in fewer)";
     message = why.str();
@@ -398,8 +431,9 @@ namespace tissuefem::contact
   {
     if (!has_friction())
       return;
-    // The stick points of the step's end (the points still in contact keep
-    // a state; a point without a stick point takes where it is).
+    // The stick points of the step's end: a point that slides takes its
+    // stick point along (its traction tau stays on the friction bound); a
+    // stuck one keeps it; one without takes where it is.
     std::vector<std::pair<std::uint64_t, Point<dim>>> moved;
     auto face = [&](const FEFaceValues<dim> &,
                     const std::vector<types::global_dof_index> &,
@@ -407,9 +441,7 @@ namespace tissuefem::contact
       for (const Point_ &p : points)
         if (obstacle_list[p.obstacle].friction > 0 && p.pressure > 0)
           moved.emplace_back(p.key,
-                             p.anchor ? Coulomb<dim>::new_anchor(
-                               p.y, *p.anchor, p.gap.normal, p.k, p.bound)
-                                      : p.y);
+                             !p.anchor || friction(p).slides ? p.y : *p.anchor);
     };
     for_each_face(u, time, face);
     for (const auto &[key, anchor] : moved)

@@ -1,6 +1,7 @@
 // Coulomb friction against a rigid obstacle (contact/penalty_contact.h,
 // augmented Lagrangian) on the closed form of a block on an incline: a
-// stiff block (E = 1e6, rho = 1, 1 x 0.25, 8 x 2 Q1 cells) at rest on a
+// stiff block (E = 1e6, rho = 1; in 2D 1 x 0.25 in 8 x 2 Q1 cells, in 3D
+// 1 x 0.25 x 0.5 in 4 x 1 x 2 boxes of P1 tetrahedra) at rest on a
 // frictional floor, with gravity tilted by theta (the incline), integrated
 // by backward Euler for 20 steps of 0.01. A rigid block sticks where tan
 // theta <= mu and otherwise slides with a = g (sin theta - mu cos theta);
@@ -35,17 +36,23 @@ namespace
     double mean_x = 0, tangential = 0, normal = 0;
   };
 
+  template <int dim>
   Outcome
   run(const double theta_degrees, const double mu)
   {
     const double       theta = theta_degrees * M_PI / 180;
     std::ostringstream text;
-    text << std::setprecision(17) << R"(
-      set Dimension = 2
+    const std::string  zero = dim == 3 ? ", 0" : "";
+    text << std::setprecision(17) << "set Dimension = " << dim << R"(
       subsection Geometry
-        set Lower corner = 0, 0
-        set Upper corner = 1, 0.25
-        set Subdivisions = 8, 2
+        set Cell type    = )"
+         << (dim == 3 ? "simplex" : "hypercube") << R"(
+        set Lower corner = 0, 0)"
+         << zero << R"(
+        set Upper corner = 1, 0.25)"
+         << (dim == 3 ? ", 0.5" : "") << R"(
+        set Subdivisions = )"
+         << (dim == 3 ? "4, 1, 2" : "8, 2") << R"(
       end
       subsection Materials
         set Model           = linear elastic
@@ -55,7 +62,8 @@ namespace
       end
       subsection Boundary conditions
         set Gravity = )"
-         << 9.81 * std::sin(theta) << ", " << -9.81 * std::cos(theta) << R"(
+         << 9.81 * std::sin(theta) << ", " << -9.81 * std::cos(theta) << zero
+         << R"(
       end
       subsection Contact
         set Method        = augmented Lagrangian
@@ -66,8 +74,10 @@ namespace
           set Friction coefficient = )"
          << mu << R"(
           subsection half-space
-            set Point  = 0, 0
-            set Normal = 0, 1
+            set Point  = 0, 0)"
+         << zero << R"(
+            set Normal = 0, 1)"
+         << zero << R"(
           end
         end
       end
@@ -84,17 +94,17 @@ namespace
     auto              *screen = std::cout.rdbuf(muted.rdbuf());
     Outcome            outcome;
     {
-      SolidScene<2> scene(prm);
-      auto         &solid      = *scene.solid;
-      time::Context context    = scene.context();
-      auto          integrator = scene.integrator(prm);
-      time::State   state;
+      SolidScene<dim> scene(prm);
+      auto           &solid      = *scene.solid;
+      time::Context   context    = scene.context();
+      auto            integrator = scene.integrator(prm);
+      time::State     state;
       solid.initial_state(state.u, state.v);
       integrator->initialize(context, state);
       while (state.time < 0.2 - 1e-12)
         integrator->advance(state, 0.2);
       // The mean of the nodes' x displacements.
-      ComponentMask along(2, false);
+      ComponentMask along(dim, false);
       along.set(0, true);
       const IndexSet x_dofs
         = DoFTools::extract_dofs(scene.discretization->dof_handler, along);
@@ -119,18 +129,19 @@ namespace
     return outcome;
   }
 
+  template <int dim>
   void
   check_incline(const double theta_degrees, const double mu)
   {
     const double theta = theta_degrees * M_PI / 180, g = 9.81, dt = 0.01;
-    const double mass = 0.25;
+    const double mass = dim == 3 ? 0.125 : 0.25;
     // Backward Euler from rest under a constant acceleration a: x_20.
     const auto discrete
       = [&](const double a) { return a * dt * dt * 20 * 21 / 2; };
-    const Outcome      frictionless = run(theta_degrees, 0);
-    const Outcome      with         = run(theta_degrees, mu);
+    const Outcome      frictionless = run<dim>(theta_degrees, 0);
+    const Outcome      with         = run<dim>(theta_degrees, mu);
     std::ostringstream label;
-    label << "theta = " << theta_degrees << " degrees, mu = " << mu;
+    label << dim << "D, theta = " << theta_degrees << " degrees, mu = " << mu;
     const std::string name = label.str();
     check_small(frictionless.mean_x / discrete(g * std::sin(theta)) - 1,
                 1e-4,
@@ -165,7 +176,15 @@ int
 main(int argc, char **argv)
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  check_incline(20, 0.5);
-  check_incline(35, 0.5);
+  // Every figure is global: one process writes.
+  std::ostringstream muted;
+  auto              *screen = std::cout.rdbuf();
+  if (Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) > 0)
+    std::cout.rdbuf(muted.rdbuf());
+  check_incline<2>(20, 0.5);
+  check_incline<2>(35, 0.5);
+  check_incline<3>(20, 0.5);
+  check_incline<3>(35, 0.5);
+  std::cout.rdbuf(screen);
   return exit_status();
 }

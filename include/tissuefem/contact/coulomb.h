@@ -10,79 +10,68 @@ namespace tissuefem::contact
   using namespace dealii;
 
   /**
-   * Coulomb friction at one contact point, regularized by a tangential
-   * penalty k and with the friction bound b = mu lambda held fixed over a
-   * Newton solve (lambda the augmented Lagrangian's multiplier, updated
-   * with it after each solve: Simo and Laursen 1992; Wriggers 2006,
-   * chapter 5). The slip s = P (y - a) is the tangential part (P = I - n
-   * (x) n) of the point's position y relative to its stick point a, both
-   * in the obstacle's frame. Its potential
+   * Coulomb friction at one contact point by the augmented Lagrangian
+   * (Simo and Laursen 1992; Wriggers 2006, chapter 5): the tangential
+   * traction is
    *
-   *   phi(s) = k |s|^2 / 2                  where k |s| <= b (stick),
-   *   phi(s) = b |s| - b^2 / (2 k)          otherwise (slip),
+   *   t = proj_b(z),  z = P tau - k s,
    *
-   * is convex and once differentiable, so that a step with friction stays
-   * a minimization (the energy line search holds) with a symmetric
-   * tangent. The force on the tissue is -dphi/ds: -k s sticking, -b s /
-   * |s| sliding; the tangent d2phi/ds2 is k P, or b / |s| (P - t (x) t)
-   * with t = s / |s|. The dependence of P on y through a curved obstacle's
-   * normal is left out: exact on flat faces, a term of relative size |s|
-   * times the curvature elsewhere.
+   * with tau the point's tangential multiplier (a traction, updated to t
+   * after each converged solve, as the normal multiplier is), s = P (y -
+   * a) the slip of the point's position y from its stick point a (both in
+   * the obstacle's frame; P = I - n (x) n), k the penalty, and proj_b the
+   * projection onto the disc |t| <= b of the friction bound b = mu lambda,
+   * held fixed over a solve. Where the updates settle (t = tau), either
+   * s = 0 and |t| <= b (stick, exactly, whatever k), or |t| = b with t
+   * against the slip (slide): Coulomb's law with maximal dissipation.
+   *
+   * Over a solve, t = -dphi/dy with the convex, once differentiable
+   *
+   *   phi = |z|^2 / (2 k)                  where |z| <= b (stick),
+   *   phi = (b |z| - b^2 / 2) / k          otherwise (slide),
+   *
+   * so that a step with friction stays a minimization (the energy line
+   * search holds) with a symmetric tangent d2phi/dy2: k P sticking,
+   * k b / |z| (P - d (x) d) sliding, d = z / |z|. The dependence of P on y
+   * through a curved obstacle's normal is left out: exact on flat faces,
+   * a term of relative size |s| times the curvature elsewhere.
    */
   template <int dim>
   struct Coulomb
   {
-    /// The force on the tissue (stress units, per unit reference area).
+    /// The tangential force on the tissue t (stress units, per unit
+    /// reference area).
     Tensor<1, dim> traction;
     /// phi (energy per unit reference area).
     double potential = 0;
     /// d2phi/dy2 (stress / length units).
     Tensor<2, dim> tangent;
-    /// Whether the point slides (k |s| > b).
+    /// Whether the point slides (|z| > b).
     bool slides = false;
-    /// The unit slip direction t where it slides.
-    Tensor<1, dim> direction;
-    /// |s| (length units).
-    double slip = 0;
 
     Coulomb(const Point<dim>     &y,
             const Point<dim>     &anchor,
             const Tensor<1, dim> &normal,
             const double          k,
-            const double          bound)
+            const double          bound,
+            const Tensor<1, dim> &tau)
     {
       const Tensor<2, dim> P
         = unit_symmetric_tensor<dim>() - outer_product(normal, normal);
-      const Tensor<1, dim> s = P * (y - anchor);
-      slip                   = s.norm();
-      slides                 = k * slip > bound;
+      const Tensor<1, dim> z    = P * tau - k * (P * (y - anchor));
+      const double         size = z.norm();
+      slides                    = size > bound;
       if (!slides)
         {
-          traction  = -k * s;
-          potential = 0.5 * k * slip * slip;
+          traction  = z;
+          potential = 0.5 * size * size / k;
           tangent   = k * P;
           return;
         }
-      direction = s / slip;
-      traction  = -bound * direction;
-      potential = bound * slip - 0.5 * bound * bound / k;
-      tangent   = bound / slip * (P - outer_product(direction, direction));
-    }
-
-    /// Where the stick point moves when the step is accepted: it stays
-    /// while the point sticks and trails it by b / k along the slip while
-    /// it slides.
-    static Point<dim>
-    new_anchor(const Point<dim>     &y,
-               const Point<dim>     &anchor,
-               const Tensor<1, dim> &normal,
-               const double          k,
-               const double          bound)
-    {
-      const Coulomb law(y, anchor, normal, k, bound);
-      if (!law.slides)
-        return anchor;
-      return y - (bound / k) * law.direction;
+      const Tensor<1, dim> d = z / size;
+      traction               = bound * d;
+      potential              = (bound * size - 0.5 * bound * bound) / k;
+      tangent                = k * bound / size * (P - outer_product(d, d));
     }
   };
 } // namespace tissuefem::contact

@@ -3,6 +3,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/fe/fe_values.h>
 
+#include <tissuefem/contact/coulomb.h>
 #include <tissuefem/contact/obstacle.h>
 #include <tissuefem/forces/interface.h>
 #include <tissuefem/solid/discretization.h>
@@ -56,11 +57,14 @@ namespace tissuefem::contact
    * dropped when the mesh changes.
    *
    * With an obstacle's 'Friction coefficient' mu > 0 (augmented Lagrangian
-   * only), a point in contact also carries a stick point, and Coulomb's
-   * law (coulomb.h) with the bound mu lambda adds its tangential force.
-   * A point that comes into contact during a step starts from where it was
-   * at the step's start (begin_step()); the stick points move only when a
-   * step is accepted (accept_step()).
+   * only), a point in contact also carries a stick point and a tangential
+   * multiplier tau, and Coulomb's law (coulomb.h) with the bound mu lambda
+   * adds its tangential force; Uzawa's update moves tau to that force, and
+   * the step is solved again until tau moves by less than k times 'Gap
+   * tolerance' (a stuck point then slips by less than the tolerance). A
+   * point that comes into contact during a step sticks where it was at the
+   * step's start (begin_step()); the stick points of the points that slide
+   * move with them only when a step is accepted (accept_step()).
    */
   template <int dim>
   class PenaltyContact : public forces::Interface<dim>
@@ -144,9 +148,11 @@ namespace tissuefem::contact
   private:
     /// One contact point: obstacle index, gap, penalty stiffness k,
     /// reference area weight dA, point index q of the face, its key in
-    /// the contact states, its pressure p = max(0, lambda - k g), its
-    /// position y in the obstacle's frame, and with friction its stick
-    /// point (null: none) and friction bound mu lambda.
+    /// the contact states, its pressure p = max(0, lambda - k g), whether
+    /// it is active (lambda - k g >= 0), its position y in the obstacle's
+    /// frame, and with friction its stick
+    /// point (null: none), friction bound mu lambda and tangential
+    /// multiplier tau.
     struct Point_
     {
       unsigned int      obstacle;
@@ -156,19 +162,23 @@ namespace tissuefem::contact
       unsigned int      q;
       std::uint64_t     key;
       double            pressure;
+      bool              active;
       Point<dim>        y;
       const Point<dim> *anchor;
       double            bound;
+      Tensor<1, dim>    tau;
     };
 
     /// What a contact point carries from solve to solve: its multiplier
-    /// lambda (stress units) and, with friction, its stick point (in the
+    /// lambda (stress units) and, with friction, its tangential
+    /// multiplier tau (stress units) and its stick point (in the
     /// obstacle's frame) once a step has been accepted in contact.
     struct State
     {
-      double     lambda   = 0;
-      bool       anchored = false;
-      Point<dim> anchor;
+      double         lambda = 0;
+      Tensor<1, dim> tau;
+      bool           anchored = false;
+      Point<dim>     anchor;
     };
 
     /**
@@ -187,6 +197,10 @@ namespace tissuefem::contact
                                const std::vector<Point_> &)> &face,
       const bool near = false) const;
 
+    /// Coulomb's law at the point @p p, which has a stick point.
+    Coulomb<dim>
+    friction(const Point_ &p) const;
+
     /// Whether some obstacle has friction.
     bool
     has_friction() const;
@@ -197,7 +211,9 @@ namespace tissuefem::contact
     double                            modulus;
     bool                              augmented;
     /// 'Gap tolerance' resolved to length units.
-    double       tolerance;
+    double tolerance;
+    /// 'Tangential penalty ratio'.
+    double       tangential;
     unsigned int max_updates;
     /// The states of the points that carry a multiplier, by key (active
     /// cell index, face, point, obstacle) on this process.
