@@ -55,7 +55,7 @@ namespace tissuefem::contact
 
   template <int dim>
   std::vector<Obstacle<dim>>
-  Obstacle<dim>::create_all(ParameterHandler &prm)
+  Obstacle<dim>::create_all(ParameterHandler &prm, const std::string &directory)
   {
     std::vector<Obstacle<dim>> result;
     prm.enter_subsection("Contact");
@@ -87,7 +87,9 @@ namespace tissuefem::contact
             try
               {
                 obstacle.shape
-                  = ShapeRegistry<dim>::instance().create(shape, prm);
+                  = ShapeRegistry<dim>::instance().create(shape,
+                                                          prm,
+                                                          directory);
               }
             catch (const InputError &e)
               {

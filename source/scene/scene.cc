@@ -94,7 +94,8 @@ namespace tissuefem
         manufactured->impose_on(*boundary_conditions);
       }
 
-    auto obstacles = contact::Obstacle<dim>::create_all(prm);
+    auto obstacles
+      = contact::Obstacle<dim>::create_all(prm, parameter_directory);
     {
       // Only these integrators take the frozen self-contact force
       // (Operators::begin_step()), pass the time of each force evaluation

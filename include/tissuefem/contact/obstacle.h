@@ -26,9 +26,10 @@ namespace tissuefem::contact
     static void
     declare_parameters(ParameterHandler &prm);
 
-    /// The obstacles the file asks for, in slot order.
+    /// The obstacles the file asks for, in slot order; shapes read from
+    /// files take relative paths from @p directory (the parameter file's).
     static std::vector<Obstacle<dim>>
-    create_all(ParameterHandler &prm);
+    create_all(ParameterHandler &prm, const std::string &directory = "");
 
     /// The shape's translation at @p time (length units).
     Tensor<1, dim>

@@ -7,6 +7,8 @@
 #include <tissuefem/base/registry.h>
 
 #include <memory>
+#include <string>
+#include <type_traits>
 
 namespace tissuefem::contact
 {
@@ -33,7 +35,8 @@ namespace tissuefem::contact
    * one, with a static declare_parameters(ParameterHandler &) that
    * declares the subsection named as the shape and a constructor taking
    * ParameterHandler & (positioned where that subsection was declared),
-   * registered by TISSUEFEM_REGISTER_SHAPE.
+   * and optionally the parameter file's directory (const std::string &,
+   * for shapes read from files), registered by TISSUEFEM_REGISTER_SHAPE.
    */
   template <int dim>
   class Shape
@@ -47,30 +50,40 @@ namespace tissuefem::contact
   };
 
   template <int dim>
-  using ShapeRegistry = Registry<Shape<dim>, ParameterHandler &>;
+  using ShapeRegistry
+    = Registry<Shape<dim>, ParameterHandler &, const std::string &>;
 } // namespace tissuefem::contact
 
 /**
  * Registers the shape template @p Class (on dim) under @p name for dim = 1,
  * 2, 3, inside namespace tissuefem::contact at the end of its source file.
  */
-#define TISSUEFEM_REGISTER_SHAPE(Class, name, description)         \
-  namespace                                                        \
-  {                                                                \
-    template <int dim>                                             \
-    bool tissuefem_register_shape_##Class()                        \
-    {                                                              \
-      ShapeRegistry<dim>::instance().add(                          \
-        name,                                                      \
-        description,                                               \
-        &Class<dim>::declare_parameters,                           \
-        [](ParameterHandler &prm) -> std::unique_ptr<Shape<dim>> { \
-          return std::make_unique<Class<dim>>(prm);                \
-        });                                                        \
-      return true;                                                 \
-    }                                                              \
-    const bool tissuefem_registered_shape_##Class                  \
-      = tissuefem_register_shape_##Class<1>()                      \
-        && tissuefem_register_shape_##Class<2>()                   \
-        && tissuefem_register_shape_##Class<3>();                  \
+#define TISSUEFEM_REGISTER_SHAPE(Class, name, description)                \
+  namespace                                                               \
+  {                                                                       \
+    template <int dim>                                                    \
+    bool tissuefem_register_shape_##Class()                               \
+    {                                                                     \
+      ShapeRegistry<dim>::instance().add(                                 \
+        name,                                                             \
+        description,                                                      \
+        &Class<dim>::declare_parameters,                                  \
+        [](ParameterHandler  &prm,                                        \
+           const std::string &directory) -> std::unique_ptr<Shape<dim>> { \
+          if constexpr (std::is_constructible_v<Class<dim>,               \
+                                                ParameterHandler &,       \
+                                                const std::string &>)     \
+            return std::make_unique<Class<dim>>(prm, directory);          \
+          else                                                            \
+            {                                                             \
+              (void)directory;                                            \
+              return std::make_unique<Class<dim>>(prm);                   \
+            }                                                             \
+        });                                                               \
+      return true;                                                        \
+    }                                                                     \
+    const bool tissuefem_registered_shape_##Class                         \
+      = tissuefem_register_shape_##Class<1>()                             \
+        && tissuefem_register_shape_##Class<2>()                          \
+        && tissuefem_register_shape_##Class<3>();                         \
   }

@@ -62,7 +62,7 @@ namespace tissuefem::contact
 
     /// The surface of @p triangles (vertex indices into @p vertices);
     /// errors name @p what (the file, for messages).
-    TriangleSurface(std::vector<Point<3>>                   vertices,
+    TriangleSurface(std::vector<Point<3>>                    vertices,
                     std::vector<std::array<unsigned int, 3>> triangles,
                     const std::string                       &what);
 
@@ -109,14 +109,14 @@ namespace tissuefem::contact
 
     struct Node
     {
-      Point<3>     lower, upper;
+      Point<3> lower, upper;
       /// Children (leaf: none), or the range [first, first + count) of
       /// tree_triangles.
       int          left = -1, right = -1;
       unsigned int first = 0, count = 0;
     };
 
-    std::vector<Point<3>>                   vertices;
+    std::vector<Point<3>>                    vertices;
     std::vector<std::array<unsigned int, 3>> triangles;
     /// Unit normal of each triangle.
     std::vector<Tensor<1, 3>> face_normals;
