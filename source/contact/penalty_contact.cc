@@ -107,6 +107,52 @@ namespace tissuefem::contact
 
 
   template <int dim>
+  void
+  PenaltyContact<dim>::add_stiffness_bound(VectorType &row_sums) const
+  {
+    if (obstacle_list.empty())
+      return;
+    const auto                          &fe = *discretization.fe;
+    FEFaceValues<dim>                    values(*discretization.mapping,
+                             fe,
+                             discretization.face_quadrature,
+                             update_values | update_JxW_values);
+    const FEValuesExtractors::Vector     displacement(0);
+    const unsigned int                   n = fe.n_dofs_per_cell();
+    std::vector<types::global_dof_index> dofs(n);
+    Vector<double>                       sums(n);
+    std::vector<double>                  size(n);
+    AffineConstraints<double>            none;
+    none.close();
+    // max over unit n of max_c |n_c| sum_d |n_d|; a point may touch every
+    // obstacle at once.
+    const double bound
+      = (1 + std::sqrt(double(dim))) / 2 * obstacle_list.size();
+    for (const auto &cell : discretization.dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned() && cell->at_boundary())
+        for (const unsigned int f : cell->face_indices())
+          if (cell->face(f)->at_boundary())
+            {
+              values.reinit(cell, f);
+              const double k = factor * modulus / cell->diameter();
+              sums           = 0;
+              for (unsigned int q = 0; q < values.n_quadrature_points; ++q)
+                {
+                  double total = 0;
+                  for (unsigned int i = 0; i < n; ++i)
+                    total += size[i] = values[displacement].value(i, q).norm();
+                  // Each scalar shape function is there once per component.
+                  for (unsigned int i = 0; i < n; ++i)
+                    sums(i)
+                      += bound * k * values.JxW(q) * size[i] * total / dim;
+                }
+              cell->get_dof_indices(dofs);
+              none.distribute_local_to_global(sums, dofs, row_sums);
+            }
+  }
+
+
+  template <int dim>
   Coulomb<dim>
   PenaltyContact<dim>::friction(const Point_ &p) const
   {

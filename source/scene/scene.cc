@@ -106,6 +106,21 @@ namespace tissuefem
       const bool implicit_one_step
         = time_parameters.integrator == "backward Euler"
           || time_parameters.integrator == "quasistatic";
+      // The plain penalty is a force of (u, t): these take it too.
+      bool penalty = true;
+      prm.enter_subsection("Contact");
+      penalty = prm.get("Method") == "penalty";
+      prm.leave_subsection();
+      prm.enter_subsection("Time integration");
+      prm.enter_subsection("Damped central difference");
+      const bool active_region = prm.get_double("Active region threshold") > 0;
+      prm.leave_subsection();
+      prm.leave_subsection();
+      const bool takes_penalty
+        = implicit_one_step
+          || time_parameters.integrator == "linearly implicit Euler"
+          || (time_parameters.integrator == "damped central difference"
+              && !active_region);
       const std::string needs
         = "needs Time integration/Integrator = backward Euler or "
           "quasistatic (not '"
@@ -114,10 +129,16 @@ namespace tissuefem
                 || implicit_one_step,
               "Boundary conditions/Self contact pressure",
               needs);
-      require(obstacles.empty() || implicit_one_step,
-              obstacles.empty() ? std::string()
-                                : obstacles.front().slot + "/Shape",
-              "contact with obstacles " + needs);
+      require(
+        obstacles.empty() || implicit_one_step || (penalty && takes_penalty),
+        obstacles.empty() ? std::string() : obstacles.front().slot + "/Shape",
+        penalty ? "contact with obstacles needs Time "
+                  "integration/Integrator = backward Euler, "
+                  "quasistatic, linearly implicit Euler or damped "
+                  "central difference without an active region (not '"
+                    + time_parameters.integrator + "'"
+                    + (active_region ? " with an active region" : "") + ")"
+                : "contact by the augmented Lagrangian " + needs);
     }
 
     // A tool may hold a part only once it acts, and an obstacle only once

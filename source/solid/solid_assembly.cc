@@ -693,7 +693,7 @@ namespace tissuefem::solid
   void
   Solid<dim>::add_contributions(const Request &request, VectorType &residual)
   {
-    if (!request.internal)
+    if (!request.internal || !request.contributions)
       return;
     for (const auto &contribution : contributions)
       contribution->add(*request.u,

@@ -16,10 +16,47 @@ namespace tissuefem::solid
   {
     make_ghosted(u, ghosted_u);
     Request request;
+    request.u             = &ghosted_u;
+    request.external      = false;
+    request.rows          = &no_constraints;
+    request.contributions = false;
+    assemble(request, force);
+  }
+
+
+  template <int dim>
+  void
+  Solid<dim>::internal_force(const VectorType &u,
+                             const double      time,
+                             VectorType       &force)
+  {
+    make_ghosted(u, ghosted_u);
+    Request request;
     request.u        = &ghosted_u;
+    request.time     = time;
     request.external = false;
     request.rows     = &no_constraints;
     assemble(request, force);
+  }
+
+
+  template <int dim>
+  double
+  Solid<dim>::contribution_frequency_bound()
+  {
+    if (contributions.empty())
+      return 0;
+    VectorType sums;
+    discretization.initialize_assembly_vector(sums);
+    for (const auto &contribution : contributions)
+      contribution->add_stiffness_bound(sums);
+    sums.compress(VectorOperation::add);
+    const VectorType &mass  = lumped_mass();
+    double            worst = 0;
+    for (const auto i : sums.locally_owned_elements())
+      if (!discretization.constraints.is_constrained(i) && mass[i] > 0)
+        worst = std::max(worst, sums[i] / mass[i]);
+    return Utilities::MPI::max(worst, parallel_tools::communicator());
   }
 
 
@@ -32,10 +69,11 @@ namespace tissuefem::solid
     AssertDimension(active_cells.size(), cache.cells().size());
     make_ghosted(u, ghosted_u);
     Request request;
-    request.u        = &ghosted_u;
-    request.external = false;
-    request.rows     = &no_constraints;
-    request.cells    = &active_cells;
+    request.u             = &ghosted_u;
+    request.external      = false;
+    request.rows          = &no_constraints;
+    request.cells         = &active_cells;
+    request.contributions = false;
     assemble(request, force);
   }
 
@@ -253,10 +291,14 @@ namespace tissuefem::solid
 
   // The class is instantiated in solid.cc; these members here.
 #define TISSUEFEM_INSTANTIATE(dim)                                               \
-  template void Solid<dim>::internal_force(const VectorType &, VectorType &);    \
-  template void Solid<dim>::internal_force_on(const VectorType &,                \
-                                              const std::vector<bool> &,         \
-                                              VectorType &);                     \
+  template void   Solid<dim>::internal_force(const VectorType &, VectorType &);  \
+  template void   Solid<dim>::internal_force(const VectorType &,                 \
+                                           const double,                       \
+                                           VectorType &);                      \
+  template double Solid<dim>::contribution_frequency_bound();                    \
+  template void   Solid<dim>::internal_force_on(const VectorType &,              \
+                                              const std::vector<bool> &,       \
+                                              VectorType &);                   \
   template std::vector<bool> Solid<dim>::cells_touching(const VectorType &);     \
   template void              Solid<dim>::mark_dofs_of(const std::vector<bool> &, \
                                          VectorType &);             \

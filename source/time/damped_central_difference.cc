@@ -452,12 +452,13 @@ namespace tissuefem::time
         }
     }
 
-    /// F = f_ext(t) - f_int(u), the force driving the nodes.
+    /// F = f_ext(t) - f_int(u), the force driving the nodes (contact at
+    /// t included).
     void
     net_force(const VectorType &u, const double time, VectorType &force) const
     {
       VectorType external;
-      context->solid.internal_force(u, force);
+      context->solid.internal_force(u, time, force);
       context->solid.external_force(time, external);
       force.sadd(-1., 1., external);
     }
@@ -486,7 +487,8 @@ namespace tissuefem::time
     /**
      * omega_max^2 = largest eigenvalue of M^-1 K(u), by power iteration
      * with K w ~ (f_int(u + e w) - f_int(u)) / e on the free entries;
-     * 10 % is added for the estimate's shortfall.
+     * 10 % is added for the estimate's shortfall, and the force
+     * contributions' bound (Operators::contribution_frequency_bound()).
      */
     double
     estimate_critical_step(const VectorType &u)
@@ -520,7 +522,9 @@ namespace tissuefem::time
           lambda = shifted * w;
           w      = shifted;
         }
-      omega_max = std::sqrt(std::max(lambda, 0.) * 1.1);
+      // Contact may touch anywhere later: its bound, not today's state.
+      omega_max = std::sqrt(std::max(lambda, 0.) * 1.1
+                            + solid.contribution_frequency_bound());
       if (!(omega_max > 0))
         return std::numeric_limits<double>::infinity();
       const double xi = damping / (2. * omega_max);

@@ -94,6 +94,15 @@ namespace tissuefem::contact
     double
     energy(const VectorType &u, const double time) const override;
 
+    /**
+     * Over every boundary face (any may touch): k |n . phi_i| sum_j |n .
+     * phi_j| dA per point and obstacle, with |n_c| sum_d |n_d| <= (1 +
+     * sqrt(dim)) / 2 over unit normals. The curvature term (-p dn/dx, of
+     * relative size p / (k R)) is left out.
+     */
+    void
+    add_stiffness_bound(VectorType &row_sums) const override;
+
     /// Notes where the points near an obstacle with friction start the
     /// step.
     void

@@ -60,6 +60,19 @@ namespace tissuefem::forces
     energy(const VectorType &u, const double time) const = 0;
 
     /**
+     * For explicit steps: adds to @p row_sums (an assembly vector; the
+     * caller compresses it), per degree of freedom, a bound on the row sum
+     * of |d2E/du2| this contribution can reach in any state (Gershgorin's
+     * bound, which with the lumped mass bounds the highest frequency it
+     * adds). None by default.
+     */
+    virtual void
+    add_stiffness_bound(VectorType &row_sums) const
+    {
+      (void)row_sums;
+    }
+
+    /**
      * After Newton has converged at the ghosted displacement @p u at
      * @p time, for the @p update-th time in this step (from 0): a
      * contribution that enforces a constraint with multipliers (the

@@ -129,6 +129,32 @@ namespace tissuefem::solid
     virtual void
     internal_force(const VectorType &u, VectorType &force)
       = 0;
+
+    /**
+     * f_int(u) plus the force contributions' dE/du at (@p u, @p time)
+     * (contact with obstacles at their place at that time): what an
+     * explicit method that honours contact evaluates.
+     */
+    virtual void
+    internal_force(const VectorType &u, const double time, VectorType &force)
+    {
+      (void)time;
+      internal_force(u, force);
+    }
+
+    /**
+     * A bound on the squared angular frequency (1 / time^2 units) the force
+     * contributions can add to the lumped-mass system in any state: the
+     * largest ratio of their stiffness bound (Gershgorin's row sums) to the
+     * lumped mass over the free degrees of freedom. An explicit step adds
+     * it to the elements' omega_max^2 (the largest eigenvalue of a sum is at
+     * most the sum of the largest).
+     */
+    virtual double
+    contribution_frequency_bound()
+    {
+      return 0;
+    }
     /**
      * f_int(u) from the cells flagged in @p active_cells only (indexed as
      * cells_touching() returns them): the others contribute nothing. For

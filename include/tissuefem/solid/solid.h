@@ -126,8 +126,17 @@ namespace tissuefem::solid
       return jacobian_matrix;
     }
 
+    /// The elements' f_int(u) (no force contributions).
     void
     internal_force(const VectorType &u, VectorType &force) override;
+
+    void
+    internal_force(const VectorType &u,
+                   const double      time,
+                   VectorType       &force) override;
+
+    double
+    contribution_frequency_bound() override;
 
     void
     internal_force_on(const VectorType        &u,
@@ -290,6 +299,9 @@ namespace tissuefem::solid
       const std::vector<bool> *cells = nullptr;
       /// Whether the carried cell dilatations apply (implicit requests).
       bool carry = false;
+      /// Whether the force contributions (contact) enter with internal
+      /// forces, at @p time.
+      bool contributions = true;
     };
 
     /// The reference body's diameter (length_scale()), set by setup().
