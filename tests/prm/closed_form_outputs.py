@@ -193,7 +193,8 @@ def contact_floor_bar_1d():
 contact_floor_bar_1d()
 
 
-def contact_floor_block_2d():
+def contact_floor_block_2d(name="contact_floor_block_2d", times=(0, 0.5, 1),
+                           weights=(0, 0.5, 1), variants=(".mpirun=2",)):
     # Uniaxial stress under the block's weight (nu = 0, frictionless floor,
     # roller on x = 0): each column is the 1D bar of contact_floor_bar_1d
     # with H = 0.5, rho g = 0.1 and k = 100 E / h, h = 0.25 sqrt 2 (the
@@ -204,23 +205,26 @@ def contact_floor_block_2d():
     def u(y, t):
         return -0.05 * t / k - 0.1 * t * (0.5 * y - y * y / 2)
     lines = ["cells 8 unknowns 30"]
-    for t in (0, 0.5, 1):
-        lines.append("t = %s obstacle floor force = 0 %s" % (fmt(t), fmt(0.05 * t)))
-        lines.append("t = %s obstacle floor penetration = %s" % (fmt(t), fmt(0.05 * t / k)))
+    for t, w in zip(times, weights):
+        lines.append("t = %s obstacle floor force = 0 %s" % (fmt(t), fmt(0.05 * w)))
+        lines.append("t = %s obstacle floor penetration = %s" % (fmt(t), fmt(0.05 * w / k)))
         # Uniform over the unit width: the weight.
-        lines.append("t = %s obstacle floor pressure range = %s %s" % (fmt(t), fmt(0.05 * t), fmt(0.05 * t)))
+        lines.append("t = %s obstacle floor pressure range = %s %s" % (fmt(t), fmt(0.05 * w), fmt(0.05 * w)))
         for p, y in enumerate((0, 0.25, 0.5)):
-            lines.append("t = %s probe %d u = 0 %s" % (fmt(t), p, fmt(u(y, t) + 0.0)))
+            lines.append("t = %s probe %d u = 0 %s" % (fmt(t), p, fmt(u(y, w) + 0.0)))
     nodes = [0, 0.25, 0.5]
     energy = sum(0.5 * (u(b, 1) - u(a, 1)) ** 2 / (b - a)
                  for a, b in zip(nodes, nodes[1:]))
     lines.append("final elastic energy " + fmt(energy))
-    for name in ("contact_floor_block_2d", "contact_floor_block_2d.mpirun=2"):
-        with open(name + ".output", "w") as f:
+    for n in (name,) + tuple(name + v for v in variants):
+        with open(n + ".output", "w") as f:
             f.write("\n".join(lines) + "\n")
 
 
 contact_floor_block_2d()
+# Released under its full weight at t = 0; at rest at t = 30 (the steps of
+# linearly implicit Euler damp the motion).
+contact_floor_block_2d("contact_floor_block_lie_2d", (0, 30), (0, 1), ())
 
 
 def contact_patch(name, dim, cells, unknowns, probes, names=None):
