@@ -22,7 +22,8 @@ namespace tissuefem::postprocess
     file << "step,time,dt,newton_iterations,linear_iterations,"
             "rejected_attempts,final_residual_norm,assembly_seconds,"
             "solve_seconds,step_seconds,substeps,jacobian_evaluations,"
-            "stored_energy,kinetic_energy,damping_work,multiplier_updates\n";
+            "stored_energy,kinetic_energy,damping_work,multiplier_updates,"
+            "contact_seconds\n";
   }
 
 
@@ -64,7 +65,7 @@ namespace tissuefem::postprocess
          << s.assembly_seconds << ',' << s.solve_seconds << ','
          << s.step_seconds << ',' << s.substeps << ',' << s.jacobian_evaluations
          << ',' << stored << ',' << kinetic << ',' << damping_work << ','
-         << s.multiplier_updates << std::endl;
+         << s.multiplier_updates << ',' << s.contact_seconds << std::endl;
   }
 
   template class Statistics<1>;
@@ -75,5 +76,6 @@ namespace tissuefem::postprocess
     Statistics,
     "statistics",
     "statistics.csv: per step, time, step size, iterations, wall times, "
-    "energies, damping work and contact multiplier updates.")
+    "energies, damping work, contact multiplier updates and the wall time "
+    "spent in contact.")
 } // namespace tissuefem::postprocess

@@ -21,6 +21,8 @@
 #include <numeric>
 #include <sstream>
 
+#include <chrono>
+
 namespace tissuefem::solid
 {
 
@@ -309,7 +311,20 @@ namespace tissuefem::solid
     if (contributions.empty())
       return forces::Augmentation::satisfied;
     make_ghosted(u, ghosted_u);
-    auto result = forces::Augmentation::satisfied;
+    auto       result = forces::Augmentation::satisfied;
+    const auto start  = std::chrono::steady_clock::now();
+    // Counted on every way out.
+    struct Clock
+    {
+      double                                      &total;
+      const std::chrono::steady_clock::time_point &start;
+      ~Clock()
+      {
+        total += std::chrono::duration<double>(std::chrono::steady_clock::now()
+                                               - start)
+                   .count();
+      }
+    } clock{contribution_time, start};
     for (const auto &contribution : contributions)
       {
         std::string why;

@@ -15,6 +15,8 @@
 #include <algorithm>
 #include <sstream>
 
+#include <chrono>
+
 namespace tissuefem::solid
 {
   namespace
@@ -693,8 +695,9 @@ namespace tissuefem::solid
   void
   Solid<dim>::add_contributions(const Request &request, VectorType &residual)
   {
-    if (!request.internal || !request.contributions)
+    if (!request.internal || !request.contributions || contributions.empty())
       return;
+    const auto start = std::chrono::steady_clock::now();
     for (const auto &contribution : contributions)
       contribution->add(*request.u,
                         request.time,
@@ -703,6 +706,9 @@ namespace tissuefem::solid
                         request.inhomogeneous,
                         jacobian_matrix,
                         residual);
+    contribution_time
+      += std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+           .count();
   }
 
 

@@ -10,6 +10,8 @@
 
 #include <limits>
 
+#include <chrono>
+
 namespace tissuefem::solid
 {
   template <int dim>
@@ -114,8 +116,12 @@ namespace tissuefem::solid
     energy -= force * x;
     if (step_contact_force.size() == x.size())
       energy -= step_contact_force * x;
+    const auto start = std::chrono::steady_clock::now();
     for (const auto &contribution : contributions)
       energy += contribution->energy(ghosted, time);
+    contribution_time
+      += std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+           .count();
     if (mass_coefficient != 0)
       {
         // As the residual's inertial term M w, w = c (u - u_tilde).

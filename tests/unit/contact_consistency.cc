@@ -8,10 +8,13 @@
 // multipliers taken from another state (Uzawa's update), so that points
 // carry a pressure lambda - k g both where they penetrate and where their
 // gap is open, and with Coulomb friction on the (flat) floor, stick points
-// at that other state.
+// at that other state. Each time also the balance: the forces reported on
+// the obstacles are minus the sum of the contact's nodal forces.
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/component_mask.h>
 
 #include <tissuefem/base/application.h>
 
@@ -69,6 +72,53 @@ namespace
   )";
   }
 
+  /**
+   * Balance: the forces the obstacles report on the tissue (contact.csv,
+   * and the tool force to come) sum to minus the contact's assembled
+   * nodal residual, component by component, to round-off: what is applied
+   * is what is reported.
+   */
+  template <int dim>
+  void
+  check_balance(tissuefem_tests::SolidScene<dim> &scene,
+                const VectorType                 &u,
+                const double                      t,
+                const std::string                &label)
+  {
+    VectorType residual;
+    scene.discretization->initialize_assembly_vector(residual);
+    AffineConstraints<double> none;
+    none.close();
+    scene.obstacle_contact->add(
+      u, t, false, none, false, scene.solid->jacobian(), residual);
+    residual.compress(VectorOperation::add);
+    Tensor<1, dim> reported;
+    double         size = 0;
+    for (const auto &report : scene.obstacle_contact->report(u, t))
+      {
+        reported += report.force;
+        size += report.force.norm();
+      }
+    double worst = 0;
+    for (unsigned int c = 0; c < dim; ++c)
+      {
+        ComponentMask mask(dim, false);
+        mask.set(c, true);
+        const IndexSet dofs
+          = DoFTools::extract_dofs(scene.discretization->dof_handler, mask);
+        double sum = 0;
+        for (const auto i : residual.locally_owned_elements())
+          if (dofs.is_element(i))
+            sum += residual[i];
+        worst = std::max(worst, std::abs(sum + reported[c]));
+      }
+    tissuefem_tests::check_small(worst / size,
+                                 1e-12,
+                                 label
+                                   + ": balance, the reported forces are "
+                                     "minus the sum of the nodal forces");
+  }
+
   template <int dim>
   void
   check(const std::string &name, const std::string &text)
@@ -124,6 +174,7 @@ namespace
                                  label + ": obstacle " + report.name
                                    + " touches the tissue",
                                  "area " + std::to_string(report.area));
+        check_balance<dim>(scene, u, t, label);
         tissuefem_tests::check_derivatives(solid, u, u_tilde, c, t, d, label);
       }
   }

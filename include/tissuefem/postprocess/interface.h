@@ -46,6 +46,9 @@ namespace tissuefem::postprocess
   {
     /// Wall-clock seconds of each step.
     std::vector<double> step_seconds;
+    /// Wall-clock seconds of each step spent in contact (force
+    /// contributions).
+    std::vector<double> contact_seconds;
     double              assembly_seconds = 0, solve_seconds = 0;
     unsigned int        newton_iterations = 0, rejected_attempts = 0;
     /// Resident memory, summed over processes (bytes).

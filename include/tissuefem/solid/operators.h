@@ -155,6 +155,14 @@ namespace tissuefem::solid
     {
       return 0;
     }
+
+    /// Wall time spent in the force contributions since the start
+    /// (seconds; contact's share of the steps).
+    virtual double
+    contribution_seconds() const
+    {
+      return 0;
+    }
     /**
      * f_int(u) from the cells flagged in @p active_cells only (indexed as
      * cells_touching() returns them): the others contribute nothing. For

@@ -138,6 +138,12 @@ namespace tissuefem::solid
     double
     contribution_frequency_bound() override;
 
+    double
+    contribution_seconds() const override
+    {
+      return contribution_time;
+    }
+
     void
     internal_force_on(const VectorType        &u,
                       const std::vector<bool> &active_cells,
@@ -558,6 +564,8 @@ namespace tissuefem::solid
     VectorType ghosted_u, ghosted_w;
     /// Forces that do not come from the elements (add_force_contribution).
     std::vector<std::shared_ptr<forces::Interface<dim>>> contributions;
+    /// Wall time spent in them so far (contribution_seconds()).
+    double contribution_time = 0;
 
     /// Adds the contributions' terms of an assembly that asks for internal
     /// forces, before the caller compresses.

@@ -68,6 +68,10 @@ namespace tissuefem::time
     /// Re-solves of the step for contact multipliers that moved (the
     /// augmented Lagrangian's Uzawa updates, Operators::augment()).
     unsigned int multiplier_updates = 0;
+    /// Wall time spent in the force contributions (contact: detection,
+    /// assembly, energies, multiplier updates) in this call (seconds; set
+    /// by the caller of advance()).
+    double contact_seconds = 0;
     /// Energy taken out by the integrator's damping force in this call
     /// (energy units; 0 without damping).
     double damping_work = 0;
