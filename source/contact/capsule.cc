@@ -86,6 +86,15 @@ namespace tissuefem::contact
   }
 
 
+  template <int dim>
+  double
+  Capsule<dim>::distance(const Point<dim> &y) const
+  {
+    const double s = std::clamp((y - start) * axis, 0., length);
+    return (y - (start + s * axis)).norm() - radius;
+  }
+
+
   template class Capsule<1>;
   template class Capsule<2>;
   template class Capsule<3>;

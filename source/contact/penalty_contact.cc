@@ -79,6 +79,7 @@ namespace tissuefem::contact
     std::vector<Obstacle<dim>>        obstacles,
     const double                      modulus)
       : discretization(discretization)
+      , boundary(discretization)
       , obstacle_list(std::move(obstacles))
       , modulus(modulus)
   {
@@ -175,94 +176,70 @@ namespace tissuefem::contact
   template <int dim>
   void
   PenaltyContact<dim>::for_each_face(
-    const VectorType                                       &u,
-    const double                                            time,
-    const std::function<void(const FEFaceValues<dim> &,
-                             const std::vector<types::global_dof_index> &,
-                             const std::vector<Point_> &)> &face,
-    const bool                                              near) const
+    const VectorType                                                     &u,
+    const double                                                          time,
+    const std::function<void(const Face &, const std::vector<Point_> &)> &face,
+    const bool near) const
   {
     if (obstacle_list.empty())
       return;
     std::vector<Tensor<1, dim>> offsets;
     for (const auto &obstacle : obstacle_list)
       offsets.push_back(obstacle.offset(time));
-    const auto                          &fe = *discretization.fe;
-    FEFaceValues<dim>                    values(*discretization.mapping,
-                             fe,
-                             discretization.face_quadrature,
-                             update_values | update_quadrature_points
-                               | update_JxW_values);
-    const FEValuesExtractors::Vector     displacement(0);
-    std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
-    std::vector<Tensor<1, dim>>          u_values;
-    std::vector<Point_>                  points;
-    const std::uint64_t                  n_q   = values.n_quadrature_points;
-    const std::uint64_t                  n_obs = obstacle_list.size();
-    for (const auto &cell : discretization.dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned() && cell->at_boundary())
-        for (const unsigned int f : cell->face_indices())
-          if (cell->face(f)->at_boundary())
+    std::vector<Point<dim>> x;
+    std::vector<Point_>     points;
+    const std::uint64_t     n_obs = obstacle_list.size();
+    for (const Face &f : boundary.faces())
+      {
+        boundary.deformed(f, u, x);
+        const double k = factor * modulus / f.diameter;
+        points.clear();
+        for (unsigned int q = 0; q < x.size(); ++q)
+          for (unsigned int o = 0; o < obstacle_list.size(); ++o)
             {
-              values.reinit(cell, f);
-              const std::uint64_t first
-                = (std::uint64_t(cell->active_cell_index())
-                     * GeometryInfo<dim>::faces_per_cell
-                   + f)
-                  * n_q * n_obs;
-              u_values.resize(values.n_quadrature_points);
-              values[displacement].get_function_values(u, u_values);
-              const double k = factor * modulus / cell->diameter();
-              points.clear();
-              for (unsigned int q = 0; q < values.n_quadrature_points; ++q)
-                {
-                  const Point<dim> x = values.quadrature_point(q) + u_values[q];
-                  for (unsigned int o = 0; o < obstacle_list.size(); ++o)
-                    {
-                      const Gap<dim> gap = obstacle_list[o].gap(x, offsets[o]);
-                      const std::uint64_t key   = first + q * n_obs + o;
-                      const State        *state = nullptr;
-                      if (!states.empty())
-                        if (const auto s = states.find(key); s != states.end())
-                          state = &s->second;
-                      const double lambda = state ? state->lambda : 0.;
-                      // Active where lambda - k g >= 0; NaN gaps pass
-                      // too, to be seen by Newton's checks.
-                      // A point with a friction bound stays while its
-                      // multiplier does, so that the friction potential
-                      // stays continuous over the solve.
-                      const bool active = !(lambda - k * gap.distance < 0);
-                      if (!active && !(near && gap.distance < cell->diameter())
-                          && !(obstacle_list[o].friction > 0 && lambda > 0))
-                        continue;
-                      const Point<dim> *anchor = nullptr;
-                      if (obstacle_list[o].friction > 0)
-                        {
-                          if (state && state->anchored)
-                            anchor = &state->anchor;
-                          else if (const auto a = step_start.find(key);
-                                   a != step_start.end())
-                            anchor = &a->second;
-                        }
-                      points.push_back({o,
-                                        gap,
-                                        k,
-                                        values.JxW(q),
-                                        q,
-                                        key,
-                                        std::max(0., lambda - k * gap.distance),
-                                        active,
-                                        x - offsets[o],
-                                        anchor,
-                                        obstacle_list[o].friction * lambda,
-                                        state ? state->tau : Tensor<1, dim>()});
-                    }
-                }
-              if (points.empty())
+              // The distance first: most points touch nothing.
+              const double distance
+                = obstacle_list[o].distance(x[q], offsets[o]);
+              const std::uint64_t key   = (f.key + q) * n_obs + o;
+              const State        *state = nullptr;
+              if (!states.empty())
+                if (const auto s = states.find(key); s != states.end())
+                  state = &s->second;
+              const double lambda = state ? state->lambda : 0.;
+              // Active where lambda - k g >= 0; NaN gaps pass too, to be
+              // seen by Newton's checks. A point with a friction bound
+              // stays while its multiplier does, so that the friction
+              // potential stays continuous over the solve.
+              const bool active = !(lambda - k * distance < 0);
+              if (!active && !(near && distance < f.diameter)
+                  && !(obstacle_list[o].friction > 0 && lambda > 0))
                 continue;
-              cell->get_dof_indices(dofs);
-              face(values, dofs, points);
+              const Gap<dim>    gap    = obstacle_list[o].gap(x[q], offsets[o]);
+              const Point<dim> *anchor = nullptr;
+              if (obstacle_list[o].friction > 0)
+                {
+                  if (state && state->anchored)
+                    anchor = &state->anchor;
+                  else if (const auto a = step_start.find(key);
+                           a != step_start.end())
+                    anchor = &a->second;
+                }
+              points.push_back({o,
+                                gap,
+                                k,
+                                boundary.weight(f, q),
+                                q,
+                                key,
+                                std::max(0., lambda - k * gap.distance),
+                                active,
+                                x[q] - offsets[o],
+                                anchor,
+                                obstacle_list[o].friction * lambda,
+                                state ? state->tau : Tensor<1, dim>()});
             }
+        if (!points.empty())
+          face(f, points);
+      }
   }
 
 
@@ -276,21 +253,20 @@ namespace tissuefem::contact
                            MatrixType                      &matrix,
                            VectorType                      &residual) const
   {
-    const FEValuesExtractors::Vector displacement(0);
-    const unsigned int               n = discretization.fe->n_dofs_per_cell();
-    FullMatrix<double>               K(n, n);
-    Vector<double>                   r(n);
-    std::vector<Tensor<1, dim>>      phi(n);
-    auto                             face = [&](const FEFaceValues<dim>                    &values,
-                    const std::vector<types::global_dof_index> &dofs,
-                    const std::vector<Point_>                  &points) {
+    const unsigned int                   n = boundary.dofs_per_face();
+    FullMatrix<double>                   K(n, n);
+    Vector<double>                       r(n);
+    std::vector<Tensor<1, dim>>          phi(n);
+    std::vector<types::global_dof_index> dofs(n);
+    auto face = [&](const Face &f, const std::vector<Point_> &points) {
       K = 0;
       r = 0;
+      std::copy(boundary.dofs(f), boundary.dofs(f) + n, dofs.begin());
       for (const Point_ &p : points)
         {
           const double stiffness = p.k * p.area, force = p.pressure * p.area;
           for (unsigned int i = 0; i < n; ++i)
-            phi[i] = values[displacement].value(i, p.q);
+            phi[i] = boundary.shape(f, p.q, i);
           for (unsigned int i = 0; p.active && i < n; ++i)
             {
               const double n_i = p.gap.normal * phi[i];
@@ -330,9 +306,7 @@ namespace tissuefem::contact
   PenaltyContact<dim>::energy(const VectorType &u, const double time) const
   {
     double sum  = 0;
-    auto   face = [&](const FEFaceValues<dim> &,
-                    const std::vector<types::global_dof_index> &,
-                    const std::vector<Point_> &points) {
+    auto   face = [&](const Face &, const std::vector<Point_> &points) {
       for (const Point_ &p : points)
         {
           sum += 0.5 * p.pressure * p.pressure / p.k * p.area;
@@ -352,9 +326,7 @@ namespace tissuefem::contact
     const unsigned int  m = obstacle_list.size();
     std::vector<double> sums(m * (dim + 1), 0.), deepest(m, 0.), highest(m, 0.),
       lowest(m, std::numeric_limits<double>::infinity());
-    auto face = [&](const FEFaceValues<dim> &,
-                    const std::vector<types::global_dof_index> &,
-                    const std::vector<Point_> &points) {
+    auto face = [&](const Face &, const std::vector<Point_> &points) {
       for (const Point_ &p : points)
         {
           const unsigned int o = p.obstacle;
@@ -407,9 +379,7 @@ namespace tissuefem::contact
     // points left out have p = 0 and lose their state.
     std::unordered_map<std::uint64_t, State> updated;
     double                                   worst = 0;
-    auto face = [&](const FEFaceValues<dim> &,
-                    const std::vector<types::global_dof_index> &,
-                    const std::vector<Point_> &points) {
+    auto face = [&](const Face &, const std::vector<Point_> &points) {
       for (const Point_ &p : points)
         {
           const double g = p.gap.distance;
@@ -459,9 +429,7 @@ namespace tissuefem::contact
       return;
     // Collected apart: for_each_face() reads step_start.
     std::unordered_map<std::uint64_t, Point<dim>> started;
-    auto face = [&](const FEFaceValues<dim> &,
-                    const std::vector<types::global_dof_index> &,
-                    const std::vector<Point_> &points) {
+    auto face = [&](const Face &, const std::vector<Point_> &points) {
       for (const Point_ &p : points)
         if (obstacle_list[p.obstacle].friction > 0)
           started.emplace(p.key, p.y);
@@ -481,9 +449,7 @@ namespace tissuefem::contact
     // stick point along (its traction tau stays on the friction bound); a
     // stuck one keeps it; one without takes where it is.
     std::vector<std::pair<std::uint64_t, Point<dim>>> moved;
-    auto face = [&](const FEFaceValues<dim> &,
-                    const std::vector<types::global_dof_index> &,
-                    const std::vector<Point_> &points) {
+    auto face = [&](const Face &, const std::vector<Point_> &points) {
       for (const Point_ &p : points)
         if (obstacle_list[p.obstacle].friction > 0 && p.pressure > 0)
           moved.emplace_back(p.key,

@@ -55,6 +55,14 @@ namespace tissuefem::contact
   }
 
 
+  template <int dim>
+  double
+  Sphere<dim>::distance(const Point<dim> &y) const
+  {
+    return (y - centre).norm() - radius;
+  }
+
+
   template class Sphere<1>;
   template class Sphere<2>;
   template class Sphere<3>;

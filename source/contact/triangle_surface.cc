@@ -233,9 +233,9 @@ namespace tissuefem::contact
         const std::string name = describe(vertices[edge.first]) + "-"
                                  + describe(vertices[edge.second]);
         if (count[0] + count[1] != 2)
-          open.push_back(name + " (in " + std::to_string(count[0] + count[1])
-                         + (count[0] + count[1] == 1 ? " triangle)"
-                                                     : " triangles)"));
+          open.push_back(
+            name + " (in " + std::to_string(count[0] + count[1])
+            + (count[0] + count[1] == 1 ? " triangle)" : " triangles)"));
         else if (count[0] != 1)
           twisted.push_back(name);
       }

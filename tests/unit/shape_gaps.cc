@@ -6,7 +6,8 @@
 //   by hand from the geometry;
 // - at 400 random points around it (fixed seed): |n| = 1; n is the
 //   distance's gradient and the normal gradient the normal's, both by
-//   central differences; and y - g n, the foot of the point, lies on the
+//   central differences; the distance alone (Shape::distance()) is the
+//   gap's; and y - g n, the foot of the point, lies on the
 //   surface (gap 0), and 1e-3 off it along n the gap is 1e-3 with the
 //   same normal: the properties that make g a
 //   signed distance and not merely a function that vanishes on the
@@ -147,7 +148,8 @@ namespace
         const auto gap = [&](const Point<dim> &y) {
           return obstacles[o].gap(y, Tensor<1, dim>());
         };
-        double unit = 0, gradient = 0, curvature = 0, foot = 0, foot_normal = 0;
+        double unit = 0, gradient = 0, curvature = 0, foot = 0, foot_normal = 0,
+               alone = 0;
         for (unsigned int k = 0; k < 400; ++k)
           {
             Point<dim> y = centres[o];
@@ -155,6 +157,10 @@ namespace
               y[d] += 2 * random.uniform();
             const auto g = gap(y);
             tissuefem_tests::raise(unit, std::abs(g.normal.norm() - 1));
+            tissuefem_tests::raise(alone,
+                                   std::abs(
+                                     obstacles[o].distance(y, Tensor<1, dim>())
+                                     - g.distance));
             for (unsigned int d = 0; d < dim; ++d)
               {
                 Point<dim> plus = y, minus = y;
@@ -182,6 +188,9 @@ namespace
         const std::string name
           = std::to_string(dim) + "D " + obstacles[o].name + ": ";
         tissuefem_tests::check_small(unit, 1e-12, name + "|n| = 1");
+        tissuefem_tests::check_small(alone,
+                                     1e-15,
+                                     name + "the distance alone is the gap's");
         tissuefem_tests::check_small(gradient, 1e-6, name + "n = grad g");
         tissuefem_tests::check_small(curvature,
                                      1e-5,

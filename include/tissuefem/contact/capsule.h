@@ -24,6 +24,9 @@ namespace tissuefem::contact
     Gap<dim>
     gap(const Point<dim> &y) const override;
 
+    double
+    distance(const Point<dim> &y) const override;
+
   private:
     Point<dim>     start;
     Tensor<1, dim> axis;

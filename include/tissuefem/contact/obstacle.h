@@ -43,6 +43,13 @@ namespace tissuefem::contact
       return shape->gap(x - offset);
     }
 
+    /// Its signed distance alone (Shape::distance()).
+    double
+    distance(const Point<dim> &x, const Tensor<1, dim> &offset) const
+    {
+      return shape->distance(x - offset);
+    }
+
     /// The name it carries in every output.
     std::string name;
 

@@ -3,6 +3,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/fe/fe_values.h>
 
+#include <tissuefem/contact/boundary_points.h>
 #include <tissuefem/contact/coulomb.h>
 #include <tissuefem/contact/obstacle.h>
 #include <tissuefem/forces/interface.h>
@@ -190,21 +191,21 @@ namespace tissuefem::contact
       Point<dim>     anchor;
     };
 
+    using Face = typename BoundaryPoints<dim>::Face;
+
     /**
-     * Calls @p face(fe_face_values, dofs, points) for each boundary face of
-     * each locally owned cell with at least one point where lambda - k g
-     * >= 0 (g <= 0 without multipliers), for the ghosted displacement @p u
-     * at @p time; with @p near, every point closer to an obstacle than
-     * its cell's diameter.
+     * Calls @p face(face, points) for each boundary face of each locally
+     * owned cell with at least one point where lambda - k g >= 0 (g <= 0
+     * without multipliers), or that carries a friction bound, for the
+     * ghosted displacement @p u at @p time; with @p near, also every point
+     * closer to an obstacle than its cell's diameter.
      */
     void
-    for_each_face(
-      const VectorType                                       &u,
-      const double                                            time,
-      const std::function<void(const FEFaceValues<dim> &,
-                               const std::vector<types::global_dof_index> &,
-                               const std::vector<Point_> &)> &face,
-      const bool near = false) const;
+    for_each_face(const VectorType                                       &u,
+                  const double                                            time,
+                  const std::function<void(const Face &,
+                                           const std::vector<Point_> &)> &face,
+                  const bool near = false) const;
 
     /// Coulomb's law at the point @p p, which has a stick point.
     Coulomb<dim>
@@ -215,10 +216,12 @@ namespace tissuefem::contact
     has_friction() const;
 
     const solid::Discretization<dim> &discretization;
-    std::vector<Obstacle<dim>>        obstacle_list;
-    double                            factor;
-    double                            modulus;
-    bool                              augmented;
+    /// The boundary's contact points, cached per mesh.
+    BoundaryPoints<dim>        boundary;
+    std::vector<Obstacle<dim>> obstacle_list;
+    double                     factor;
+    double                     modulus;
+    bool                       augmented;
     /// 'Gap tolerance' resolved to length units.
     double tolerance;
     /// 'Tangential penalty ratio'.

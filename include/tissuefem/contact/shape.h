@@ -47,6 +47,15 @@ namespace tissuefem::contact
     /// The gap of the point @p y (in the shape's frame).
     virtual Gap<dim>
     gap(const Point<dim> &y) const = 0;
+
+    /// gap(y).distance alone: what contact asks of the many points that do
+    /// not touch. Shapes whose normal and curvature cost more than their
+    /// distance override it.
+    virtual double
+    distance(const Point<dim> &y) const
+    {
+      return gap(y).distance;
+    }
   };
 
   template <int dim>

@@ -22,6 +22,9 @@ namespace tissuefem::contact
     Gap<dim>
     gap(const Point<dim> &y) const override;
 
+    double
+    distance(const Point<dim> &y) const override;
+
   private:
     Point<dim> centre;
     double     radius;
