@@ -2,6 +2,8 @@
 #include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/contact/obstacle.h>
 
+#include <filesystem>
+
 namespace tissuefem::contact
 {
   template <int dim>
@@ -37,6 +39,16 @@ namespace tissuefem::contact
           "';' (the first dim are used), or one for all. The shape moves "
           "rigidly: "
           "contact pushes the tissue, never the obstacle.");
+        prm.declare_entry(
+          "Motion file",
+          "",
+          Patterns::Anything(),
+          "A CSV file of the shape's translation against time, recorded "
+          "from a device or written by hand: rows 't, x, y[, z]' (time and "
+          "length units), times increasing, a first line that is not "
+          "numeric a header; interpolated linearly and held beyond the "
+          "ends. A relative path is taken relative to the parameter file's "
+          "directory. Replaces 'Motion' when set.");
         prm.declare_entry(
           "Friction coefficient",
           "0",
@@ -78,7 +90,19 @@ namespace tissuefem::contact
               require(other.name != obstacle.name,
                       "Contact/" + slot + "/Name",
                       "'" + obstacle.name + "' names two obstacles");
-            obstacle.moves    = names_variable(prm.get("Motion"), "t");
+            obstacle.moves = names_variable(prm.get("Motion"), "t");
+            if (std::string file = Utilities::trim(prm.get("Motion file"));
+                !file.empty())
+              {
+                if (std::filesystem::path(file).is_relative()
+                    && !directory.empty())
+                  file = (std::filesystem::path(directory) / file).string();
+                obstacle.recorded = std::make_shared<TrajectoryTable<dim>>(
+                  TrajectoryTable<dim>::read(file,
+                                             "Contact/" + slot
+                                               + "/Motion file"));
+                obstacle.moves = true;
+              }
             obstacle.friction = prm.get_double("Friction coefficient");
             obstacle.motion
               = make_function<dim>(leading_entries(prm.get("Motion"), ';', dim),
@@ -109,6 +133,8 @@ namespace tissuefem::contact
   Tensor<1, dim>
   Obstacle<dim>::offset(const double time) const
   {
+    if (recorded)
+      return recorded->position(time);
     motion->set_time(time);
     Tensor<1, dim> result;
     for (unsigned int d = 0; d < dim; ++d)

@@ -189,45 +189,8 @@ namespace tissuefem::tool
       }
     else if (!Utilities::trim(p.trajectory_file).empty())
       {
-        std::ifstream in(p.trajectory_file);
-        require(static_cast<bool>(in),
-                "Tool/Trajectory file",
-                "cannot open '" + p.trajectory_file + "'");
-        std::string  line;
-        unsigned int number = 0;
-        while (std::getline(in, line))
-          {
-            ++number;
-            if (Utilities::trim(line).empty())
-              continue;
-            std::vector<double> row;
-            try
-              {
-                row = numbers(line, "");
-              }
-            catch (const InputError &)
-              {
-                if (number == 1)
-                  continue; // a header
-                throw InputError("File '" + p.trajectory_file + "', line "
-                                 + std::to_string(number)
-                                 + ": not a row of finite numbers");
-              }
-            if (row.size() != dim + 1)
-              throw InputError("File '" + p.trajectory_file + "', line "
-                               + std::to_string(number) + ": expected "
-                               + std::to_string(dim + 1)
-                               + " values (t and the coordinates), got "
-                               + std::to_string(row.size()));
-            if (!table.empty() && !(row[0] > table.back()[0]))
-              throw InputError("File '" + p.trajectory_file + "', line "
-                               + std::to_string(number)
-                               + ": times must increase");
-            table.push_back(row);
-          }
-        require(!table.empty(),
-                "Tool/Trajectory file",
-                "'" + p.trajectory_file + "' holds no positions");
+        table = TrajectoryTable<dim>::read(p.trajectory_file,
+                                           "Tool/Trajectory file");
       }
     else
       {
@@ -257,30 +220,7 @@ namespace tissuefem::tool
       }
     // Linear interpolation in the recorded positions, held at the ends; a
     // live tool is at its reference position until the first arrives.
-    if (table.empty())
-      return d;
-    auto                row = std::upper_bound(table.begin(),
-                                table.end(),
-                                time,
-                                [](const double t, const auto &r) {
-                                  return t < r[0];
-                                });
-    std::vector<double> position;
-    if (row == table.begin())
-      position = table.front();
-    else if (row == table.end())
-      position = table.back();
-    else
-      {
-        const auto  &b = *row, &a = *(row - 1);
-        const double s = (time - a[0]) / (b[0] - a[0]);
-        position       = a;
-        for (unsigned int c = 1; c <= dim; ++c)
-          position[c] = (1 - s) * a[c] + s * b[c];
-      }
-    for (unsigned int c = 0; c < dim; ++c)
-      d[c] = position[c + 1] - table.front()[c + 1];
-    return d;
+    return table.position(time) - table.first();
   }
 
 
@@ -445,21 +385,19 @@ namespace tissuefem::tool
     if (!link)
       return true;
     const double eps = 1e-12 * std::max(1., std::abs(time));
-    while (table.empty() || table.back()[0] < time - eps)
+    while (table.empty() || table.last_time() < time - eps)
       {
         if (link->ended())
           return false;
         // The link's thread has answered them already; out-of-order
-        // positions are answered but not followed.
+        // positions are answered but not followed (append() drops them).
         for (const auto &sample : link->receive())
-          if (table.empty() || sample.time > table.back()[0])
-            {
-              std::vector<double> row{sample.time};
-              row.insert(row.end(),
-                         sample.position.begin(),
-                         sample.position.end());
-              table.push_back(row);
-            }
+          {
+            Tensor<1, dim> position;
+            for (unsigned int d = 0; d < dim && d < sample.position.size(); ++d)
+              position[d] = sample.position[d];
+            table.append(sample.time, position);
+          }
       }
     link->set_stepping(true);
     return true;

@@ -256,6 +256,7 @@ def contact_patch(name, dim, cells, unknowns, probes, names=None):
 
 
 contact_patch("contact_patch_2d", 2, 8, 30, [(1, 0.5), (0.5, 0.25), (0.25, 0.5)])
+contact_patch("contact_patch_recorded_2d", 2, 8, 30, [(1, 0.5), (0.5, 0.25), (0.25, 0.5)])
 contact_patch("contact_patch_3d", 3, 20, 54,
               [(1, 1, 0.5), (0.5, 0.5, 0.25), (0.3, 0.7, 0.5)],
               ("contact_patch_3d", "contact_patch_3d.mpirun=2"))

@@ -3,6 +3,7 @@
 #include <deal.II/base/function_parser.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include <tissuefem/base/trajectory_table.h>
 #include <tissuefem/contact/shape.h>
 
 #include <memory>
@@ -66,6 +67,8 @@ namespace tissuefem::contact
   private:
     std::shared_ptr<const Shape<dim>>    shape;
     std::shared_ptr<FunctionParser<dim>> motion;
+    /// 'Motion file' (null: 'Motion').
+    std::shared_ptr<const TrajectoryTable<dim>> recorded;
   };
 
   /// Slots 'Obstacle 1' .. 'Obstacle max_obstacles' in 'Contact'.

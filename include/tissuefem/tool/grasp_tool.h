@@ -4,6 +4,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/tensor.h>
 
+#include <tissuefem/base/trajectory_table.h>
 #include <tissuefem/solid/solid.h>
 #include <tissuefem/time/interface.h>
 #include <tissuefem/tool/interface.h>
@@ -119,9 +120,10 @@ namespace tissuefem::tool
     Point<dim>                           grasp_point;
     std::vector<unsigned int>            vertices;
     std::unique_ptr<FunctionParser<dim>> trajectory;
-    std::vector<std::vector<double>>     table; // t, x, y[, z]
-    bool                                 holding = false, released = false;
-    double                               grasp_time_actual = 0;
+    /// Recorded or live positions (or none, with 'Trajectory').
+    TrajectoryTable<dim> table;
+    bool                 holding = false, released = false;
+    double               grasp_time_actual = 0;
 
     // Force history for extrapolation.
     std::optional<double> last_time;

@@ -1,0 +1,124 @@
+#include <deal.II/base/utilities.h>
+
+#include <tissuefem/base/input_error.h>
+#include <tissuefem/base/trajectory_table.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+
+namespace tissuefem
+{
+  namespace
+  {
+    /// The comma-separated finite numbers of @p line; throws otherwise.
+    std::vector<double>
+    row_of(const std::string &line)
+    {
+      std::vector<double> values;
+      for (const auto &item : Utilities::split_string_list(line, ','))
+        {
+          std::size_t end   = 0;
+          double      value = 0;
+          try
+            {
+              value = std::stod(item, &end);
+            }
+          catch (...)
+            {
+              end = 0;
+            }
+          if (end != item.size() || !std::isfinite(value))
+            throw InputError("'" + item + "' is not a finite number");
+          values.push_back(value);
+        }
+      return values;
+    }
+  } // namespace
+
+
+  template <int dim>
+  TrajectoryTable<dim>
+  TrajectoryTable<dim>::read(const std::string &file,
+                             const std::string &parameter)
+  {
+    std::ifstream in(file);
+    require(static_cast<bool>(in), parameter, "cannot open '" + file + "'");
+    TrajectoryTable table;
+    std::string     line;
+    for (unsigned int number = 1; std::getline(in, line); ++number)
+      {
+        if (Utilities::trim(line).empty())
+          continue;
+        const std::string where
+          = "File '" + file + "', line " + std::to_string(number) + ": ";
+        std::vector<double> row;
+        try
+          {
+            row = row_of(line);
+          }
+        catch (const InputError &)
+          {
+            if (number == 1)
+              continue; // a header
+            throw InputError(where + "not a row of finite numbers");
+          }
+        if (row.size() != dim + 1)
+          throw InputError(where + "expected " + std::to_string(dim + 1)
+                           + " values (t and the coordinates), got "
+                           + std::to_string(row.size()));
+        if (!table.empty() && !(row[0] > table.times.back()))
+          throw InputError(where + "times must increase");
+        Tensor<1, dim> position;
+        for (unsigned int d = 0; d < dim; ++d)
+          position[d] = row[d + 1];
+        table.append(row[0], position);
+      }
+    require(!table.empty(), parameter, "'" + file + "' holds no positions");
+    return table;
+  }
+
+
+  template <int dim>
+  void
+  TrajectoryTable<dim>::append(const double          time,
+                               const Tensor<1, dim> &position)
+  {
+    if (!times.empty() && !(time > times.back()))
+      return;
+    times.push_back(time);
+    positions.push_back(position);
+  }
+
+
+  template <int dim>
+  double
+  TrajectoryTable<dim>::last_time() const
+  {
+    return times.empty() ? -std::numeric_limits<double>::infinity()
+                         : times.back();
+  }
+
+
+  template <int dim>
+  Tensor<1, dim>
+  TrajectoryTable<dim>::position(const double time) const
+  {
+    if (times.empty())
+      return {};
+    const auto after = std::upper_bound(times.begin(), times.end(), time);
+    if (after == times.begin())
+      return positions.front();
+    if (after == times.end())
+      return positions.back();
+    const std::size_t b = after - times.begin(), a = b - 1;
+    const double      s = (time - times[a]) / (times[b] - times[a]);
+    return (1 - s) * positions[a] + s * positions[b];
+  }
+
+
+  template class TrajectoryTable<1>;
+  template class TrajectoryTable<2>;
+  template class TrajectoryTable<3>;
+} // namespace tissuefem
