@@ -367,6 +367,63 @@ namespace tissuefem::contact
 
 
   template <int dim>
+  void
+  PenaltyContact<dim>::cell_fields(const VectorType &u,
+                                   const double      time,
+                                   Vector<float>    &pressure,
+                                   Vector<float>    &gap) const
+  {
+    const auto &triangulation = discretization.dof_handler.get_triangulation();
+    pressure.reinit(triangulation.n_active_cells());
+    gap.reinit(triangulation.n_active_cells());
+    if (obstacle_list.empty())
+      return;
+    std::vector<Tensor<1, dim>> offsets;
+    for (const auto &obstacle : obstacle_list)
+      offsets.push_back(obstacle.offset(time));
+    const auto nearest = [&](const Point<dim> &x) {
+      double g = std::numeric_limits<double>::infinity();
+      for (unsigned int o = 0; o < obstacle_list.size(); ++o)
+        g = std::min(g, obstacle_list[o].distance(x, offsets[o]));
+      return g;
+    };
+    // Centres, moved by the mean of their vertices' displacements.
+    for (const auto &cell : discretization.dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          Tensor<1, dim> mean;
+          for (const unsigned int v : cell->vertex_indices())
+            for (unsigned int c = 0; c < dim; ++c)
+              mean[c] += u(cell->vertex_dof_index(v, c));
+          mean /= cell->n_vertices();
+          gap[cell->active_cell_index()] = nearest(cell->center() + mean);
+        }
+    const std::uint64_t     faces_per_cell = GeometryInfo<dim>::faces_per_cell;
+    const std::uint64_t     n_obs          = obstacle_list.size();
+    std::vector<Point<dim>> x;
+    for (const Face &f : boundary.faces())
+      {
+        const unsigned int cell
+          = f.key / boundary.points_per_face() / faces_per_cell;
+        boundary.deformed(f, u, x);
+        const double k = factor * modulus / f.diameter;
+        for (unsigned int q = 0; q < x.size(); ++q)
+          for (unsigned int o = 0; o < obstacle_list.size(); ++o)
+            {
+              const double g      = obstacle_list[o].distance(x[q], offsets[o]);
+              double       lambda = 0;
+              if (const auto s = states.find((f.key + q) * n_obs + o);
+                  s != states.end())
+                lambda = s->second.lambda;
+              gap[cell]      = std::min<double>(gap[cell], g);
+              pressure[cell] = std::max<double>(pressure[cell],
+                                                std::max(0., lambda - k * g));
+            }
+      }
+  }
+
+
+  template <int dim>
   forces::Augmentation
   PenaltyContact<dim>::augment(const VectorType  &u,
                                const double       time,

@@ -132,6 +132,13 @@ namespace tissuefem::postprocess
     static const char *fibre_names[] = {"fibre_x", "fibre_y", "fibre_z"};
     for (unsigned int c = 0; c < fibre.size(); ++c)
       data_out.add_data_vector(fibre[c], fibre_names[c]);
+    Vector<float> contact_pressure, contact_gap;
+    if (const auto &contact = this->context->scene.obstacle_contact)
+      {
+        contact->cell_fields(u, time, contact_pressure, contact_gap);
+        data_out.add_data_vector(contact_pressure, "contact_pressure");
+        data_out.add_data_vector(contact_gap, "contact_gap");
+      }
     data_out.build_patches(*d.mapping, d.fe->degree);
 
     // One piece per process, a .pvtu naming them, and the .pvd series.

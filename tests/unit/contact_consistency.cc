@@ -15,6 +15,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/component_mask.h>
+#include <deal.II/lac/vector.h>
 
 #include <tissuefem/base/application.h>
 
@@ -76,7 +77,8 @@ namespace
    * Balance: the forces the obstacles report on the tissue (contact.csv,
    * and the tool force to come) sum to minus the contact's assembled
    * nodal residual, component by component, to round-off: what is applied
-   * is what is reported.
+   * is what is reported. And the VTU's cell fields (largest pressure,
+   * smallest gap) match contact.csv's.
    */
   template <int dim>
   void
@@ -117,6 +119,23 @@ namespace
                                  label
                                    + ": balance, the reported forces are "
                                      "minus the sum of the nodal forces");
+    // The VTU's cell fields agree with contact.csv's figures (to float).
+    Vector<float> pressure, gap;
+    scene.obstacle_contact->cell_fields(u, t, pressure, gap);
+    double highest = 0, deepest = 0;
+    for (const auto &report : scene.obstacle_contact->report(u, t))
+      {
+        highest = std::max(highest, report.max_pressure);
+        deepest = std::max(deepest, report.penetration);
+      }
+    tissuefem_tests::check_small(
+      (pressure.linfty_norm() - highest) / highest,
+      1e-6,
+      label + ": the VTU's largest contact pressure is contact.csv's");
+    tissuefem_tests::check_small(
+      (*std::min_element(gap.begin(), gap.end()) + deepest) / deepest,
+      1e-6,
+      label + ": the VTU's smallest gap is minus contact.csv's penetration");
   }
 
   template <int dim>

@@ -2,6 +2,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/vector.h>
 
 #include <tissuefem/contact/boundary_points.h>
 #include <tissuefem/contact/coulomb.h>
@@ -148,6 +149,21 @@ namespace tissuefem::contact
 
     std::vector<Report>
     report(const VectorType &u, const double time) const;
+
+    /**
+     * Per active cell of this process (indexed by active cell index), for
+     * the ghosted @p u at @p time: @p pressure, the largest contact
+     * pressure at its boundary points (stress units; 0 on cells without
+     * boundary faces), and @p gap, the smallest gap to any obstacle (length
+     * units; negative where it penetrates) over its boundary points and its
+     * centre (moved by the mean displacement of its vertices). For the VTU
+     * output.
+     */
+    void
+    cell_fields(const VectorType &u,
+                const double      time,
+                Vector<float>    &pressure,
+                Vector<float>    &gap) const;
 
     const std::vector<Obstacle<dim>> &
     obstacles() const
