@@ -428,6 +428,33 @@ PRM_CASES = [
     ("stability_map", "real-time-budget-0",
      m_append([T], [("Real-time budget", "0")]), "Real-time budget"),
 
+    # contact
+    ("liver_pressed", "friction-coefficient-negative",
+     m_append(["Contact", "Obstacle 1"], [("Friction coefficient", "-0.3")]),
+     "Friction coefficient"),
+    ("muscle_palpation", "friction-with-the-penalty",
+     m_append(["Contact", "Obstacle 1"], [("Friction coefficient", "0.3")]),
+     "Friction coefficient"),
+    ("muscle_palpation", "penalty-factor-0",
+     m_append(["Contact"], [("Penalty factor", "0")]), "Penalty factor"),
+    ("muscle_palpation", "tangential-penalty-ratio-0",
+     m_append(["Contact"], [("Tangential penalty ratio", "0")]),
+     "Tangential penalty ratio"),
+    ("liver_pressed", "motion-file-missing",
+     m_append(["Contact", "Obstacle 2"],
+              [("Motion file", "/nonexistent/fuzz/press.csv")]),
+     "Motion file"),
+    ("muscle_palpation", "surface-file-missing",
+     lambda lines, rng: ("\n".join(lines).rstrip("\n") + "\n"
+                         + block(["Contact", "Obstacle 2"],
+                                 [("Shape", "surface")])
+                         + block(["Contact", "Obstacle 2", "surface"],
+                                 [("File", "/nonexistent/fuzz/organ.stl")]),
+                         True),
+     "surface/File"),
+    ("muscle_palpation", "contact-with-radau",
+     m_append([T], [("Integrator", "Radau IIA")]), "Obstacle 1/Shape"),
+
     # broken structure
     ("cook_membrane", "truncated-after-subsection-materials",
      m_truncate_after_subsection(M), None),
