@@ -8,6 +8,8 @@
 
 #include <tissuefem/base/nan_aware.h>
 
+#include <mpi.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -190,6 +192,33 @@ namespace tissuefem_tests
     raise(negated, -x);
     least = -negated;
   }
+
+  /**
+   * While it lives, std::cout writes on the first MPI process only: for
+   * tests whose figures are global (sums over processes), so that one
+   * process writes the output.
+   */
+  class OneWriter
+  {
+  public:
+    OneWriter()
+        : screen(std::cout.rdbuf())
+    {
+      int rank = 0;
+      MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+      if (rank > 0)
+        std::cout.rdbuf(muted.rdbuf());
+    }
+
+    ~OneWriter()
+    {
+      std::cout.rdbuf(screen);
+    }
+
+  private:
+    std::ostringstream muted;
+    std::streambuf    *screen;
+  };
 
   /// The exit status: non-zero if any check failed.
   inline int

@@ -87,8 +87,10 @@ namespace tissuefem::contact
     // alike (as the lean kernel's ghost indices assume): the positions of
     // the faces' entries are looked up once per mesh.
     const auto &vector = u.trilinos_vector();
-    if (local_index.size() != dof_indices.size())
+    if (local_index.size() != dof_indices.size()
+        || indexed_length != vector.MyLength())
       {
+        indexed_length = vector.MyLength();
         local_index.resize(dof_indices.size());
         for (unsigned int k = 0; k < dof_indices.size(); ++k)
           {

@@ -97,6 +97,7 @@ namespace tissuefem::contact
     // Keys name active cells, whose numbering a mesh change redraws.
     mesh_changed = triangulation.signals.any_change.connect([this]() {
       states.clear();
+      committed.clear();
       step_start.clear();
     });
     for (const auto &obstacle : obstacle_list)
@@ -179,7 +180,7 @@ namespace tissuefem::contact
     const VectorType                                                     &u,
     const double                                                          time,
     const std::function<void(const Face &, const std::vector<Point_> &)> &face,
-    const bool near) const
+    const bool every) const
   {
     if (obstacle_list.empty())
       return;
@@ -211,7 +212,7 @@ namespace tissuefem::contact
               // stays while its multiplier does, so that the friction
               // potential stays continuous over the solve.
               const bool active = !(lambda - k * distance < 0);
-              if (!active && !(near && distance < f.diameter)
+              if (!active && !every
                   && !(obstacle_list[o].friction > 0 && lambda > 0))
                 continue;
               const Gap<dim>    gap    = obstacle_list[o].gap(x[q], offsets[o]);
@@ -441,6 +442,12 @@ namespace tissuefem::contact
         {
           const double g = p.gap.distance;
           worst = max_keeping_nan(worst, p.pressure > 0 ? std::abs(g) : -g);
+          // A point that lifted off still felt friction in this solve
+          // (its bound held over it): solve again without it.
+          if (p.pressure == 0 && p.anchor && p.bound > 0)
+            worst = max_keeping_nan(worst,
+                                    friction(p).traction.norm()
+                                      / (tangential * p.k));
           if (p.pressure > 0)
             {
               State state;
@@ -452,7 +459,9 @@ namespace tissuefem::contact
                   // tau <- t; how far it moves, over k, is the slip the
                   // penalty lets a stuck point take (length units).
                   const Tensor<1, dim> t = friction(p).traction;
-                  worst     = max_keeping_nan(worst, (t - p.tau).norm() / p.k);
+                  worst
+                    = max_keeping_nan(worst,
+                                      (t - p.tau).norm() / (tangential * p.k));
                   state.tau = t;
                 }
               updated.emplace(p.key, state);
@@ -482,9 +491,14 @@ namespace tissuefem::contact
   void
   PenaltyContact<dim>::begin_step(const VectorType &u, const double time)
   {
+    // An attempt starts from the last accepted step: the multipliers and
+    // stick points a failed attempt moved are dropped.
+    states = committed;
     if (!has_friction())
       return;
-    // Collected apart: for_each_face() reads step_start.
+    // Every boundary point, so that one that touches during the step,
+    // however far it starts, sticks where it started. Collected apart:
+    // for_each_face() reads step_start.
     std::unordered_map<std::uint64_t, Point<dim>> started;
     auto face = [&](const Face &, const std::vector<Point_> &points) {
       for (const Point_ &p : points)
@@ -501,7 +515,10 @@ namespace tissuefem::contact
   PenaltyContact<dim>::accept_step(const VectorType &u, const double time)
   {
     if (!has_friction())
-      return;
+      {
+        committed = states;
+        return;
+      }
     // The stick points of the step's end: a point that slides takes its
     // stick point along (its traction tau stays on the friction bound); a
     // stuck one keeps it; one without takes where it is.
@@ -519,6 +536,7 @@ namespace tissuefem::contact
           s->second.anchor   = anchor;
           s->second.anchored = true;
         }
+    committed = states;
   }
 
 

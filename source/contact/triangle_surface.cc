@@ -186,7 +186,17 @@ namespace tissuefem::contact
     if (extension == ".stl")
       {
         if (!read_binary_stl(bytes, scale, vertices, triangles))
-          read_ascii_stl(bytes, file, scale, vertices, triangles);
+          {
+            // Not a binary file of the size its count gives: ASCII, if it
+            // reads as such.
+            require(bytes.compare(0, 5, "solid") == 0
+                      && bytes.find("facet") != std::string::npos,
+                    parameter,
+                    "'" + file
+                      + "' is neither ASCII STL ('solid' ... 'facet') nor "
+                        "binary STL of the size its triangle count gives");
+            read_ascii_stl(bytes, file, scale, vertices, triangles);
+          }
       }
     else if (extension == ".obj")
       read_obj(bytes, file, scale, vertices, triangles);
@@ -441,6 +451,17 @@ namespace tissuefem::contact
     const Tensor<1, 3> pseudonormal
       = best.region <= 3 ? vertex_normals[triangles[t][best.region - 1]]
                          : edge_normals[t][best.region - 4];
+    // An edge between coplanar triangles (a quadrilateral's diagonal) or a
+    // vertex amid a flat patch: the surface is a plane there, whatever
+    // region the nearest point fell in (the sum of two unit normals has
+    // length 2, the angle-weighted sum around a flat vertex 2 pi).
+    const double flat = best.region <= 3 ? 2 * numbers::PI : 2.;
+    if (pseudonormal.norm() >= flat * (1 - 1e-12))
+      {
+        query.normal   = face_normals[t];
+        query.distance = r * query.normal;
+        return query;
+      }
     const double sign = r * pseudonormal >= 0 ? 1. : -1.;
     if (d == 0)
       {

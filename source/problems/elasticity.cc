@@ -135,6 +135,9 @@ namespace tissuefem::problems
       return "a scene with a tool cannot be checkpointed";
     if (adaptation->enabled())
       return "a scene with mesh refinement cannot be checkpointed";
+    if (scene->obstacle_contact && scene->obstacle_contact->keeps_history())
+      return "contact by the augmented Lagrangian keeps multipliers (and "
+             "friction's stick points) that a checkpoint does not hold";
     return {};
   }
 

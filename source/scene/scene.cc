@@ -35,6 +35,60 @@ namespace tissuefem
   }
 
 
+  namespace
+  {
+    /**
+     * Only these integrators take the frozen self-contact force
+     * (Operators::begin_step()), pass the time of each force evaluation
+     * that a moving obstacle needs, and update the contact multipliers
+     * (Operators::augment()); others would ignore them unseen. The plain
+     * penalty is a force of (u, t): linearly implicit Euler and the damped
+     * central difference (without an active region) take it too.
+     */
+    template <int dim>
+    void
+    check_state_dependent_loads(
+      ParameterHandler                          &prm,
+      const double                               self_contact_pressure,
+      const std::vector<contact::Obstacle<dim>> &obstacles)
+    {
+      time::TimeParameters time_parameters;
+      time_parameters.parse_parameters(prm);
+      const std::string &integrator = time_parameters.integrator;
+      const bool         implicit_one_step
+        = integrator == "backward Euler" || integrator == "quasistatic";
+      prm.enter_subsection("Contact");
+      const bool penalty = prm.get("Method") == "penalty";
+      prm.leave_subsection();
+      prm.enter_subsection("Time integration");
+      prm.enter_subsection("Damped central difference");
+      const bool active_region = prm.get_double("Active region threshold") > 0;
+      prm.leave_subsection();
+      prm.leave_subsection();
+      const bool takes_penalty
+        = implicit_one_step || integrator == "linearly implicit Euler"
+          || (integrator == "damped central difference" && !active_region);
+      const std::string needs
+        = "needs Time integration/Integrator = backward Euler or "
+          "quasistatic (not '"
+          + integrator + "')";
+      require(self_contact_pressure == 0 || implicit_one_step,
+              "Boundary conditions/Self contact pressure",
+              needs);
+      require(
+        obstacles.empty() || implicit_one_step || (penalty && takes_penalty),
+        obstacles.empty() ? std::string() : obstacles.front().slot + "/Shape",
+        penalty ? "contact with obstacles needs Time "
+                  "integration/Integrator = backward Euler, "
+                  "quasistatic, linearly implicit Euler or damped "
+                  "central difference without an active region (not '"
+                    + integrator + "'"
+                    + (active_region ? " with an active region" : "") + ")"
+                : "contact by the augmented Lagrangian " + needs);
+    }
+  } // namespace
+
+
   template <int dim>
   Scene<dim>::Scene(ParameterHandler  &prm,
                     const std::string &parameter_directory)
@@ -96,50 +150,9 @@ namespace tissuefem
 
     auto obstacles
       = contact::Obstacle<dim>::create_all(prm, parameter_directory);
-    {
-      // Only these integrators take the frozen self-contact force
-      // (Operators::begin_step()), pass the time of each force evaluation
-      // that a moving obstacle needs, and update the contact multipliers
-      // (Operators::augment()); others would ignore them unseen.
-      time::TimeParameters time_parameters;
-      time_parameters.parse_parameters(prm);
-      const bool implicit_one_step
-        = time_parameters.integrator == "backward Euler"
-          || time_parameters.integrator == "quasistatic";
-      // The plain penalty is a force of (u, t): these take it too.
-      bool penalty = true;
-      prm.enter_subsection("Contact");
-      penalty = prm.get("Method") == "penalty";
-      prm.leave_subsection();
-      prm.enter_subsection("Time integration");
-      prm.enter_subsection("Damped central difference");
-      const bool active_region = prm.get_double("Active region threshold") > 0;
-      prm.leave_subsection();
-      prm.leave_subsection();
-      const bool takes_penalty
-        = implicit_one_step
-          || time_parameters.integrator == "linearly implicit Euler"
-          || (time_parameters.integrator == "damped central difference"
-              && !active_region);
-      const std::string needs
-        = "needs Time integration/Integrator = backward Euler or "
-          "quasistatic (not '"
-          + time_parameters.integrator + "')";
-      require(boundary_parameters.self_contact_pressure == 0
-                || implicit_one_step,
-              "Boundary conditions/Self contact pressure",
-              needs);
-      require(
-        obstacles.empty() || implicit_one_step || (penalty && takes_penalty),
-        obstacles.empty() ? std::string() : obstacles.front().slot + "/Shape",
-        penalty ? "contact with obstacles needs Time "
-                  "integration/Integrator = backward Euler, "
-                  "quasistatic, linearly implicit Euler or damped "
-                  "central difference without an active region (not '"
-                    + time_parameters.integrator + "'"
-                    + (active_region ? " with an active region" : "") + ")"
-                : "contact by the augmented Lagrangian " + needs);
-    }
+    check_state_dependent_loads(prm,
+                                boundary_parameters.self_contact_pressure,
+                                obstacles);
 
     // A tool may hold a part only once it acts, and an obstacle only once
     // the part touches it; the check needs the constraints known up front.

@@ -113,6 +113,9 @@ namespace tissuefem::time
               ++report.rejected_attempts;
               continue;
             }
+          // Accepted: contributions with history commit it (a rejected
+          // step's stick points and multipliers are dropped).
+          context->solid.accept_step(next.u, next.time);
           state.time = next.time;
           state.u.swap(next.u);
           state.v.swap(next.v);

@@ -290,7 +290,6 @@ namespace tissuefem::time
     // prescribed values, unchanged) in the state.
     solid.apply_dirichlet_values(t_new, next.u);
     finish(state, u_tilde, h, next);
-    solid.accept_step(next.u, t_new);
     return {};
   }
 
@@ -347,6 +346,9 @@ namespace tissuefem::time
     // they are what the step cost.
     report.linear_iterations
       = linear_solver.statistics().iterations - linear_before;
+    // Contributions with history (friction's stick points) commit only
+    // now: an attempt that failed never got here.
+    context->solid.accept_step(next.u, next.time);
     state.time = next.time;
     state.u.swap(next.u);
     state.v.swap(next.v);

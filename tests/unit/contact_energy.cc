@@ -93,14 +93,11 @@ namespace
     Outcome            outcome;
     {
       SolidScene<2> scene(prm);
-      auto         &solid      = *scene.solid;
-      time::Context context    = scene.context();
-      auto          integrator = scene.integrator(prm);
-      time::State   state;
-      solid.initial_state(state.u, state.v);
-      integrator->initialize(context, state);
-      const bool lumped = integrator_name != "backward Euler";
-      const auto total  = [&]() {
+      auto         &solid  = *scene.solid;
+      const auto    run    = scene.start(prm);
+      time::State  &state  = run->state;
+      const bool    lumped = integrator_name != "backward Euler";
+      const auto    total  = [&]() {
         VectorType none(state.u);
         none = 0;
         if (!lumped)
@@ -118,7 +115,7 @@ namespace
       double       previous = start;
       while (state.time < 0.5 - 1e-12)
         {
-          integrator->advance(state, 0.5);
+          run->integrator->advance(state, 0.5);
           const double now = total();
           raise(outcome.worst_rise, (now - previous) / std::abs(start));
           raise(outcome.worst_change, std::abs(now - start) / std::abs(start));

@@ -52,6 +52,34 @@ namespace tissuefem_tests
         time_parameters.integrator, prm);
     }
 
+    /// A run of the scene from its initial state, with the integrator
+    /// initialized (which keeps a pointer to the context: a Run stays where
+    /// start() made it).
+    struct Run
+    {
+      time::Context                    context;
+      std::unique_ptr<time::Interface> integrator;
+      time::State                      state;
+
+      /// Steps until @p end_time.
+      void
+      advance_to(const double end_time)
+      {
+        while (state.time < end_time - 1e-9 * std::max(1., std::abs(end_time)))
+          integrator->advance(state, end_time);
+      }
+    };
+
+    /// Starts a run of 'Time integration/Integrator' from the initial state.
+    std::unique_ptr<Run>
+    start(ParameterHandler &prm)
+    {
+      auto run = std::unique_ptr<Run>(new Run{context(), integrator(prm), {}});
+      this->solid->initial_state(run->state.u, run->state.v);
+      run->integrator->initialize(run->context, run->state);
+      return run;
+    }
+
     time::TimeParameters                   time_parameters;
     solvers::NewtonParameters              newton_parameters;
     std::unique_ptr<solvers::LinearSolver> linear_solver;

@@ -23,8 +23,9 @@ namespace tissuefem::contact
    * displacement then cost one small product per point, instead of an
    * FEFaceValues reinit per face per evaluation (measured on
    * liver_pressed.prm: contact took 55 % of the step through FEFaceValues).
-   * Rebuilt on first use after the triangulation changes or the degrees of
-   * freedom are renumbered.
+   * Rebuilt on first use after the triangulation changes or the number of
+   * degrees of freedom does (a renumbering of the same mesh is not seen:
+   * TissueFEM numbers only after a mesh change).
    */
   template <int dim>
   class BoundaryPoints
@@ -118,6 +119,9 @@ namespace tissuefem::contact
     /// Where each entry of dof_indices() lies in a ghosted vector's local
     /// entries (found on first use after a rebuild).
     mutable std::vector<int> local_index;
+    /// The local length of the vector local_index was found in (another
+    /// layout finds them anew).
+    mutable int indexed_length = -1;
     /// deformed()'s buffer of a face's nodal values.
     mutable std::vector<double> local;
   };

@@ -105,12 +105,14 @@ namespace tissuefem::contact
     void
     add_stiffness_bound(VectorType &row_sums) const override;
 
-    /// Notes where the points near an obstacle with friction start the
-    /// step.
+    /// Restores the states of the last accepted step (a failed attempt's
+    /// updates are dropped) and notes where the boundary points facing an
+    /// obstacle with friction start the step.
     void
     begin_step(const VectorType &u, const double time) override;
 
-    /// Moves the stick points of the points that slid.
+    /// Moves the stick points of the points that slid and commits the
+    /// states.
     void
     accept_step(const VectorType &u, const double time) override;
 
@@ -171,6 +173,15 @@ namespace tissuefem::contact
       return obstacle_list;
     }
 
+    /// Whether it carries state from step to step (the augmented
+    /// Lagrangian's multipliers, friction's stick points), which a
+    /// checkpoint does not hold.
+    bool
+    keeps_history() const
+    {
+      return augmented;
+    }
+
   private:
     /// One contact point: obstacle index, gap, penalty stiffness k,
     /// reference area weight dA, point index q of the face, its key in
@@ -213,15 +224,14 @@ namespace tissuefem::contact
      * Calls @p face(face, points) for each boundary face of each locally
      * owned cell with at least one point where lambda - k g >= 0 (g <= 0
      * without multipliers), or that carries a friction bound, for the
-     * ghosted displacement @p u at @p time; with @p near, also every point
-     * closer to an obstacle than its cell's diameter.
+     * ghosted displacement @p u at @p time; with @p every, every point.
      */
     void
     for_each_face(const VectorType                                       &u,
                   const double                                            time,
                   const std::function<void(const Face &,
                                            const std::vector<Point_> &)> &face,
-                  const bool near = false) const;
+                  const bool every = false) const;
 
     /// Coulomb's law at the point @p p, which has a stick point.
     Coulomb<dim>
@@ -246,9 +256,12 @@ namespace tissuefem::contact
     /// The states of the points that carry a multiplier, by key (active
     /// cell index, face, point, obstacle) on this process.
     std::unordered_map<std::uint64_t, State> states;
-    /// With friction: where the points near an obstacle were at the start
-    /// of the step (obstacle frame), the stick point of those that come
-    /// into contact in it.
+    /// The states as the last accepted step left them (accept_step()):
+    /// where each attempt at a step starts (begin_step()).
+    std::unordered_map<std::uint64_t, State> committed;
+    /// With friction: where the boundary points were at the start of the
+    /// step (obstacle frame), the stick point of those that come into
+    /// contact in it.
     std::unordered_map<std::uint64_t, Point<dim>> step_start;
     /// Drops the states when the mesh changes.
     boost::signals2::scoped_connection mesh_changed;
