@@ -59,6 +59,14 @@ namespace tissuefem::contact
       "gap within 'Gap tolerance'; beyond, the step fails (and may be "
       "retried shorter).");
     prm.declare_entry(
+      "Start penetration tolerance",
+      "0",
+      Patterns::Double(0),
+      "How deep an obstacle may start inside the tissue (length units): a "
+      "deeper start is refused before the run writes anything (the first "
+      "step would throw the tissue off with the penalty's whole force). 0 "
+      "takes 1e-3 times the body's diameter.");
+    prm.declare_entry(
       "Tangential penalty ratio",
       "0.01",
       Patterns::Double(1e-12, 1),
@@ -84,16 +92,23 @@ namespace tissuefem::contact
       , modulus(modulus)
   {
     prm.enter_subsection("Contact");
-    factor      = prm.get_double("Penalty factor");
-    augmented   = prm.get("Method") == "augmented Lagrangian";
-    tolerance   = prm.get_double("Gap tolerance");
-    max_updates = prm.get_integer("Maximum multiplier updates");
-    tangential  = prm.get_double("Tangential penalty ratio");
+    factor          = prm.get_double("Penalty factor");
+    augmented       = prm.get("Method") == "augmented Lagrangian";
+    tolerance       = prm.get_double("Gap tolerance");
+    max_updates     = prm.get_integer("Maximum multiplier updates");
+    tangential      = prm.get_double("Tangential penalty ratio");
+    start_tolerance = prm.get_double("Start penetration tolerance");
     prm.leave_subsection();
     require(factor > 0, "Contact/Penalty factor", "must be > 0");
     const auto &triangulation = discretization.dof_handler.get_triangulation();
-    if (tolerance == 0)
-      tolerance = 1e-4 * GridTools::diameter(triangulation);
+    if (tolerance == 0 || start_tolerance == 0)
+      {
+        const double diameter = GridTools::diameter(triangulation);
+        if (tolerance == 0)
+          tolerance = 1e-4 * diameter;
+        if (start_tolerance == 0)
+          start_tolerance = 1e-3 * diameter;
+      }
     // Keys name active cells, whose numbering a mesh change redraws.
     mesh_changed = triangulation.signals.any_change.connect([this]() {
       states.clear();
@@ -364,6 +379,26 @@ namespace tissuefem::contact
         result[o].min_pressure = std::isfinite(low) ? low : 0.;
       }
     return result;
+  }
+
+
+  template <int dim>
+  void
+  PenaltyContact<dim>::check_start(const VectorType &u, const double time) const
+  {
+    const auto reports = report(u, time);
+    for (unsigned int o = 0; o < reports.size(); ++o)
+      if (!(reports[o].penetration <= start_tolerance))
+        {
+          std::ostringstream why;
+          why << "obstacle '" << reports[o].name << "' starts "
+              << reports[o].penetration
+              << " (length units) inside the tissue, deeper than 'Contact/"
+                 "Start penetration tolerance' ("
+              << start_tolerance << "); move it out";
+          throw InputError("Parameter '" + obstacle_list[o].slot
+                           + "/Shape': " + why.str());
+        }
   }
 
 

@@ -524,8 +524,15 @@ namespace tissuefem::problems
                           time_parameters,
                           newton_parameters,
                           *linear_solver};
-    time::State   state          = scene->initial_state();
-    const auto    follow_changes = connect_to_changes(state);
+    time::State   state = scene->initial_state();
+    if (scene->obstacle_contact)
+      {
+        VectorType ghosted;
+        scene->discretization->initialize_vector(ghosted, true);
+        ghosted = state.u;
+        scene->obstacle_contact->check_start(ghosted, state.time);
+      }
+    const auto follow_changes = connect_to_changes(state);
     move_tool(state);
     // The integrator may still reject its input (an explicit step above
     // the critical one): before any file exists.

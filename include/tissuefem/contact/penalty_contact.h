@@ -161,6 +161,12 @@ namespace tissuefem::contact
      * centre (moved by the mean displacement of its vertices). For the VTU
      * output.
      */
+    /// Refuses (InputError naming the obstacle's slot) an obstacle that
+    /// starts deeper inside the tissue, at the ghosted @p u and @p time,
+    /// than 'Contact/Start penetration tolerance'.
+    void
+    check_start(const VectorType &u, const double time) const;
+
     void
     cell_fields(const VectorType &u,
                 const double      time,
@@ -251,7 +257,9 @@ namespace tissuefem::contact
     /// 'Gap tolerance' resolved to length units.
     double tolerance;
     /// 'Tangential penalty ratio'.
-    double       tangential;
+    double tangential;
+    /// 'Start penetration tolerance' resolved to length units.
+    double       start_tolerance;
     unsigned int max_updates;
     /// The states of the points that carry a multiplier, by key (active
     /// cell index, face, point, obstacle) on this process.
