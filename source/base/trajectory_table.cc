@@ -4,6 +4,7 @@
 #include <tissuefem/base/trajectory_table.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -49,6 +50,9 @@ namespace tissuefem
     std::string     line;
     for (unsigned int number = 1; std::getline(in, line); ++number)
       {
+        // A UTF-8 byte order mark (spreadsheet exports) is no data.
+        if (number == 1 && line.compare(0, 3, "\xEF\xBB\xBF") == 0)
+          line.erase(0, 3);
         if (Utilities::trim(line).empty())
           continue;
         const std::string where
@@ -60,8 +64,13 @@ namespace tissuefem
           }
         catch (const InputError &)
           {
-            if (number == 1)
-              continue; // a header
+            // A first line with a letter in it is a header; a typo in a
+            // first row of numbers is not.
+            if (number == 1
+                && std::any_of(line.begin(), line.end(), [](const char c) {
+                     return std::isalpha(static_cast<unsigned char>(c));
+                   }))
+              continue;
             throw InputError(where + "not a row of finite numbers");
           }
         if (row.size() != dim + 1)

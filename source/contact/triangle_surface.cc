@@ -283,14 +283,7 @@ namespace tissuefem::contact
                            + describe(vertices[v[0]]) + " has zero area");
         face_normals[t] = n / n.norm();
       }
-    if (volume() < 0)
-      {
-        // Oriented inward throughout: turn it.
-        for (auto &t : triangles)
-          std::swap(t[1], t[2]);
-        for (auto &n : face_normals)
-          n = -n;
-      }
+    orient_parts(what);
     // Pseudonormals (Baerentzen and Aanaes 2005).
     std::map<std::pair<unsigned int, unsigned int>, Tensor<1, 3>> edge_sum;
     vertex_normals.assign(vertices.size(), Tensor<1, 3>());
@@ -313,6 +306,54 @@ namespace tissuefem::contact
           const unsigned int a = triangles[t][k], b = triangles[t][(k + 1) % 3];
           edge_normals[t][k] = edge_sum[{std::min(a, b), std::max(a, b)}];
         }
+  }
+
+
+  void
+  TriangleSurface::orient_parts(const std::string &what)
+  {
+    // The closed parts: triangles joined by shared edges (union-find).
+    std::vector<unsigned int> part(triangles.size());
+    std::iota(part.begin(), part.end(), 0u);
+    const auto root = [&](unsigned int t) {
+      while (part[t] != t)
+        t = part[t] = part[part[t]];
+      return t;
+    };
+    std::map<std::pair<unsigned int, unsigned int>, unsigned int> first;
+    for (unsigned int t = 0; t < triangles.size(); ++t)
+      for (unsigned int k = 0; k < 3; ++k)
+        {
+          const unsigned int a = triangles[t][k], b = triangles[t][(k + 1) % 3];
+          const auto [it, added]
+            = first.emplace(std::make_pair(std::min(a, b), std::max(a, b)), t);
+          if (!added)
+            part[root(t)] = root(it->second);
+        }
+    // Each part's enclosed volume: all positive (outward), or all
+    // negative (inward throughout: turned); mixed signs would swap inside
+    // and outside in some part.
+    std::map<unsigned int, double> volumes;
+    for (unsigned int t = 0; t < triangles.size(); ++t)
+      volumes[root(t)] += vertices[triangles[t][0]]
+                          * cross_product_3d(vertices[triangles[t][1]],
+                                             vertices[triangles[t][2]]);
+    unsigned int inward = 0;
+    for (const auto &[p, v] : volumes)
+      inward += v < 0;
+    if (inward == 0)
+      return;
+    if (inward < volumes.size())
+      throw InputError("Surface " + what + " has " + std::to_string(inward)
+                       + " of its " + std::to_string(volumes.size())
+                       + " closed parts oriented inward and the others "
+                         "outward: orient every part outward (a hollow "
+                         "obstacle, a part inside another, is not "
+                         "supported)");
+    for (auto &t : triangles)
+      std::swap(t[1], t[2]);
+    for (auto &n : face_normals)
+      n = -n;
   }
 
 

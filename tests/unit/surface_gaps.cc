@@ -11,8 +11,8 @@
 //   within 1e-3 of the surface; the sign is right (inside the inscribed
 //   sphere negative, outside the circumscribed positive);
 // - bad surfaces get one clear error naming what is wrong: open, two
-//   triangles running an edge the same way, a missing file, an empty file,
-//   a surface in 2D.
+//   triangles running an edge the same way, two closed parts oriented
+//   differently, a missing file, an empty file, a surface in 2D.
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
@@ -323,6 +323,22 @@ namespace
     expect_error([&]() { TriangleSurface(v, twisted, "twisted box"); },
                  "is not consistently oriented",
                  "a box with one triangle turned");
+    {
+      // Two boxes side by side, the second turned inside out.
+      std::vector<Point<3>> two = v;
+      for (const auto &p : v)
+        two.push_back(p + Tensor<1, 3>({3., 0., 0.}));
+      auto both = box_triangles();
+      for (auto t : box_triangles(true))
+        {
+          for (auto &i : t)
+            i += 8;
+          both.push_back(t);
+        }
+      expect_error([&]() { TriangleSurface(two, both, "two boxes"); },
+                   "closed parts oriented inward",
+                   "two boxes, one turned inside out");
+    }
     expect_error([&]() { TriangleSurface::read("missing.stl", "File", 1); },
                  "cannot open 'missing.stl'",
                  "a missing file");

@@ -24,7 +24,8 @@ namespace tissuefem::contact
    *   that run it in opposite directions (closed and consistently
    *   oriented), no triangle has zero area; otherwise an InputError names
    *   the offending edges by their end points. A surface oriented inward
-   *   (negative enclosed volume) is turned outward.
+   *   (negative enclosed volume in every closed part) is turned outward;
+   *   one whose parts disagree is refused.
    * - The query finds the nearest point by descending a bounding-volume
    *   tree (axis-aligned boxes, split at the median of the triangles'
    *   centroids along the longest side; Ericson 2005, chapter 6), pruning
@@ -103,6 +104,11 @@ namespace tissuefem::contact
 
     void
     check_and_orient(const std::string &what);
+
+    /// Turns a surface oriented inward throughout; refuses one whose
+    /// closed parts are oriented differently.
+    void
+    orient_parts(const std::string &what);
 
     void
     build_tree();
