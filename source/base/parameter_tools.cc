@@ -127,6 +127,30 @@ namespace tissuefem
   }
 
 
+  std::vector<double>
+  parse_numbers(const std::string &text, const std::string &what)
+  {
+    std::vector<double> values;
+    for (const auto &item : Utilities::split_string_list(text, ','))
+      {
+        std::size_t end   = 0;
+        double      value = 0;
+        try
+          {
+            value = std::stod(item, &end);
+          }
+        catch (...)
+          {
+            end = 0;
+          }
+        if (end != item.size() || !std::isfinite(value))
+          throw InputError(what + ": '" + item + "' is not a finite number");
+        values.push_back(value);
+      }
+    return values;
+  }
+
+
   template <int dim>
   std::unique_ptr<FunctionParser<dim>>
   make_function(const std::string &expressions,

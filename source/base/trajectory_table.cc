@@ -1,6 +1,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <tissuefem/base/input_error.h>
+#include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/base/trajectory_table.h>
 
 #include <algorithm>
@@ -11,32 +12,6 @@
 
 namespace tissuefem
 {
-  namespace
-  {
-    /// The comma-separated finite numbers of @p line; throws otherwise.
-    std::vector<double>
-    row_of(const std::string &line)
-    {
-      std::vector<double> values;
-      for (const auto &item : Utilities::split_string_list(line, ','))
-        {
-          std::size_t end   = 0;
-          double      value = 0;
-          try
-            {
-              value = std::stod(item, &end);
-            }
-          catch (...)
-            {
-              end = 0;
-            }
-          if (end != item.size() || !std::isfinite(value))
-            throw InputError("'" + item + "' is not a finite number");
-          values.push_back(value);
-        }
-      return values;
-    }
-  } // namespace
 
 
   template <int dim>
@@ -60,7 +35,7 @@ namespace tissuefem
         std::vector<double> row;
         try
           {
-            row = row_of(line);
+            row = parse_numbers(line, "");
           }
         catch (const InputError &)
           {

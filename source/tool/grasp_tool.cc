@@ -133,40 +133,13 @@ namespace tissuefem::tool
   }
 
 
-  namespace
-  {
-    std::vector<double>
-    numbers(const std::string &text, const std::string &what)
-    {
-      std::vector<double> values;
-      for (const auto &item : Utilities::split_string_list(text, ','))
-        {
-          std::size_t end = 0;
-          double      value;
-          try
-            {
-              value = std::stod(item, &end);
-            }
-          catch (...)
-            {
-              end = 0;
-            }
-          if (end != item.size() || !std::isfinite(value))
-            throw InputError(what + ": '" + item + "' is not a finite number");
-          values.push_back(value);
-        }
-      return values;
-    }
-  } // namespace
-
-
   template <int dim>
   GraspTool<dim>::GraspTool(const ToolParameters     &p,
                             const Triangulation<dim> &mesh)
       : parameters(p)
   {
     const auto coordinates
-      = numbers(p.grasp_point, "Parameter 'Tool/Grasp point'");
+      = parse_numbers(p.grasp_point, "Parameter 'Tool/Grasp point'");
     require(coordinates.size() == dim,
             "Tool/Grasp point",
             "needs " + std::to_string(dim) + " coordinates, got "

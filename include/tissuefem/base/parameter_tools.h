@@ -62,6 +62,11 @@ namespace tissuefem
                 const unsigned int n_components,
                 const std::string &parameter);
 
+  /// The comma-separated finite numbers of @p text; an InputError
+  /// "@p what: 'item' is not a finite number" otherwise.
+  std::vector<double>
+  parse_numbers(const std::string &text, const std::string &what);
+
   /// A point from "x, y[, z]" with exactly @p dim coordinates.
   template <int dim>
   Point<dim>
