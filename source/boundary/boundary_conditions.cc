@@ -8,6 +8,7 @@
 #include <cctype>
 #include <cmath>
 #include <set>
+#include <sstream>
 
 namespace tissuefem::boundary
 {
@@ -64,20 +65,23 @@ namespace tissuefem::boundary
         "manufactured solution needs 1 (or automatic).");
       prm.declare_entry(
         "Self contact pressure",
-        "0",
-        Patterns::Double(0),
+        "automatic",
+        Patterns::Anything(),
         "Overlap pressure p_c (Pa if SI; 0: off): where the deformed body "
         "overlaps itself, its boundary facets inside the body elsewhere are "
         "pushed back into their own part with the pressure p_c. This is "
         "the gradient of p_c times the volume the body covers more than "
-        "once (solid/self_contact.h), so it resolves overlaps that are "
+        "once (contact/self_contact.h), so it resolves overlaps that are "
         "already there (a tangled crushed start, a fold-over) as well as "
-        "new ones. Frozen over each step (taken at the step's start); "
-        "backward Euler and quasistatic runs only. Choose it near the shear "
-        "modulus: 0.8 to 1.3 times it untangled every crushed start of the "
-        "tests on tetrahedra and hexahedra; a quarter of it left tangles, "
-        "twice it crushed the boundary layer so that Newton failed "
-        "(doc/tests.md). Costs (boundary facets)^2 solid angles a step.");
+        "new ones. Which facets push is decided at each step's start; "
+        "within the step Newton has their tangent. Backward Euler, "
+        "quasistatic and linearly implicit Euler runs only. 'automatic': "
+        "the shear modulus of the stiffest invertible neo-Hookean material "
+        "where the mesh has triangles or tetrahedra (which, crushed, can "
+        "settle tangled) and the integrator takes it, 0 otherwise; the "
+        "first lines of a run say which. The window of pressures that "
+        "untangled every crushed start of the tests is in doc/tests.md. "
+        "Costs (boundary facets)^2 solid angles a step.");
       prm.declare_entry("Initial displacement",
                         "0",
                         Patterns::Anything(),
@@ -95,14 +99,14 @@ namespace tissuefem::boundary
   BoundaryParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Boundary conditions");
-    dirichlet             = prm.get("Dirichlet");
-    neumann               = prm.get("Neumann");
-    body_force            = prm.get("Body force");
-    gravity               = prm.get("Gravity");
-    initial_displacement  = prm.get("Initial displacement");
-    initial_velocity      = prm.get("Initial velocity");
-    load_factor           = prm.get("Load factor");
-    self_contact_pressure = prm.get_double("Self contact pressure");
+    dirichlet            = prm.get("Dirichlet");
+    neumann              = prm.get("Neumann");
+    body_force           = prm.get("Body force");
+    gravity              = prm.get("Gravity");
+    initial_displacement = prm.get("Initial displacement");
+    initial_velocity     = prm.get("Initial velocity");
+    load_factor          = prm.get("Load factor");
+    self_contact         = Utilities::trim(prm.get("Self contact pressure"));
     prm.leave_subsection();
   }
 
@@ -161,6 +165,35 @@ namespace tissuefem::boundary
   }
 
 
+  void
+  BoundaryParameters::resolve_self_contact(const double       shear_modulus,
+                                           const bool         takes_it,
+                                           const std::string &why)
+  {
+    if (self_contact == "automatic")
+      {
+        self_contact_pressure = takes_it ? shear_modulus : 0.;
+        self_contact_note     = "automatic: " + why;
+        return;
+      }
+    const std::string name = "Boundary conditions/Self contact pressure";
+    const std::string must
+      = "must be 'automatic' or a pressure >= 0 (0: off), not '" + self_contact
+        + "'";
+    std::vector<double> value;
+    try
+      {
+        value = parse_numbers(self_contact, "Parameter '" + name + "'");
+      }
+    catch (const InputError &)
+      {
+        require(false, name, must);
+      }
+    require(value.size() == 1 && value[0] >= 0, name, must);
+    self_contact_pressure = value[0];
+  }
+
+
   template <int dim>
   BoundaryConditions<dim>::BoundaryConditions(
     const BoundaryParameters &parameters)
@@ -193,6 +226,7 @@ namespace tissuefem::boundary
         loads_name_time_ = loads_name_time_ || names_time(expressions);
       }
     self_contact_pressure = parameters.self_contact_pressure;
+    self_contact_note     = parameters.self_contact_note;
     factor_expression     = Utilities::trim(parameters.load_factor);
     factor_note           = parameters.load_factor_note;
     require(factor_expression != "automatic",
@@ -274,6 +308,20 @@ namespace tissuefem::boundary
     if (!factor_note.empty())
       text += "; " + factor_note;
     return text + ")";
+  }
+
+
+  template <int dim>
+  std::string
+  BoundaryConditions<dim>::describe_self_contact() const
+  {
+    std::ostringstream text;
+    text << "self contact pressure p_c = " << self_contact_pressure
+         << " (stress units; 0: off";
+    if (!self_contact_note.empty())
+      text << "; " << self_contact_note;
+    text << ")";
+    return text.str();
   }
 
 

@@ -56,8 +56,9 @@ namespace tissuefem::contact
           "Coulomb's coefficient mu between this obstacle and the tissue "
           "(dimensionless, >= 0; 0 is frictionless): a contact point "
           "sticks while its tangential traction is below mu times its "
-          "contact pressure and slides against it otherwise. Needs "
-          "'Contact/Method = augmented Lagrangian'.");
+          "contact pressure and slides against it otherwise. Any "
+          "'Contact/Method'; implicit steps solve again until the bound "
+          "settles, explicit steps take the bound of the step before.");
         shapes.declare_parameters(prm);
         prm.leave_subsection();
       }
@@ -91,6 +92,7 @@ namespace tissuefem::contact
                       "Contact/" + slot + "/Name",
                       "'" + obstacle.name + "' names two obstacles");
             obstacle.moves = names_variable(prm.get("Motion"), "t");
+            obstacle.own_motion_names_t = obstacle.moves;
             if (std::string file = Utilities::trim(prm.get("Motion file"));
                 !file.empty())
               {
@@ -133,6 +135,8 @@ namespace tissuefem::contact
   Tensor<1, dim>
   Obstacle<dim>::offset(const double time) const
   {
+    if (follower)
+      return follower(time);
     if (recorded)
       return recorded->position(time);
     motion->set_time(time);

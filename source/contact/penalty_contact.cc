@@ -50,7 +50,9 @@ namespace tissuefem::contact
       Patterns::Double(0),
       "Augmented Lagrangian: the largest gap accepted at a contact point "
       "(length units): its penetration, or its distance from the obstacle "
-      "where it is pressed. 0 takes 1e-4 times the body's diameter.");
+      "where it is pressed. With friction, also the largest change of a "
+      "stuck point's slip between the last two solves of a step. 0 takes "
+      "1e-4 times the body's diameter.");
     prm.declare_entry(
       "Maximum multiplier updates",
       "50",
@@ -71,11 +73,13 @@ namespace tissuefem::contact
       "0.01",
       Patterns::Double(1e-12, 1),
       "Friction (an obstacle's 'Friction coefficient' > 0): the tangential "
-      "penalty over the normal one (dimensionless, in (0, 1]). A stuck point "
-      "sticks exactly once the multiplier updates settle, whatever the "
-      "ratio; a stiff tangential penalty leaves Newton a narrow band "
-      "between sticking and sliding, where it crawls, and a soft one takes "
-      "more updates.");
+      "penalty over the normal one (dimensionless, in (0, 1]). With the "
+      "augmented Lagrangian a stuck point sticks exactly once the "
+      "multiplier updates settle, whatever the ratio; a stiff tangential "
+      "penalty leaves Newton a narrow band between sticking and sliding, "
+      "where it crawls, and a soft one takes more updates. With the "
+      "penalty a stuck point may slip by up to its friction bound over "
+      "the tangential penalty, mu / ratio times its penetration.");
     prm.leave_subsection();
   }
 
@@ -115,11 +119,6 @@ namespace tissuefem::contact
       committed.clear();
       step_start.clear();
     });
-    for (const auto &obstacle : obstacle_list)
-      require(obstacle.friction == 0 || augmented,
-              obstacle.slot + "/Friction coefficient",
-              "needs 'Contact/Method = augmented Lagrangian' (the friction "
-              "bound is mu times the contact multiplier)");
   }
 
 
@@ -143,8 +142,13 @@ namespace tissuefem::contact
     none.close();
     // max over unit n of max_c |n_c| sum_d |n_d|; a point may touch every
     // obstacle at once.
+    const double normal = (1 + std::sqrt(double(dim))) / 2;
+    // Friction's tangent k_t P, P = I - n (x) n: |P_cd| <= 1 off and on
+    // the diagonal's 1 - n_c^2, so a row of P sums to at most 1 + |n_c|
+    // sum_d |n_d|.
     const double bound
-      = (1 + std::sqrt(double(dim))) / 2 * obstacle_list.size();
+      = (normal + (has_friction() ? tangential * (1 + normal) : 0.))
+        * obstacle_list.size();
     for (const auto &cell : discretization.dof_handler.active_cell_iterators())
       if (cell->is_locally_owned() && cell->at_boundary())
         for (const unsigned int f : cell->face_indices())
@@ -222,13 +226,18 @@ namespace tissuefem::contact
                 if (const auto s = states.find(key); s != states.end())
                   state = &s->second;
               const double lambda = state ? state->lambda : 0.;
+              // Friction's bound: mu lambda, or the penalty's mu p of the
+              // last solve.
+              const double bound = augmented
+                                     ? obstacle_list[o].friction * lambda
+                                   : state ? state->bound
+                                           : 0.;
               // Active where lambda - k g >= 0; NaN gaps pass too, to be
               // seen by Newton's checks. A point with a friction bound
-              // stays while its multiplier does, so that the friction
-              // potential stays continuous over the solve.
+              // stays while it does, so that the friction potential stays
+              // continuous over the solve.
               const bool active = !(lambda - k * distance < 0);
-              if (!active && !every
-                  && !(obstacle_list[o].friction > 0 && lambda > 0))
+              if (!active && !every && !(bound > 0))
                 continue;
               const Gap<dim>    gap    = obstacle_list[o].gap(x[q], offsets[o]);
               const Point<dim> *anchor = nullptr;
@@ -250,7 +259,7 @@ namespace tissuefem::contact
                                 active,
                                 x[q] - offsets[o],
                                 anchor,
-                                obstacle_list[o].friction * lambda,
+                                bound,
                                 state ? state->tau : Tensor<1, dim>()});
             }
         if (!points.empty())
@@ -467,7 +476,8 @@ namespace tissuefem::contact
                                std::string       &message)
   {
     if (!augmented)
-      return forces::Augmentation::satisfied;
+      return has_friction() ? update_bounds(u, time, update, message)
+                            : forces::Augmentation::satisfied;
     // Uzawa: lambda <- p and tau <- t at every point, stick points kept;
     // points left out have p = 0 and lose their state.
     std::unordered_map<std::uint64_t, State> updated;
@@ -523,6 +533,57 @@ namespace tissuefem::contact
 
 
   template <int dim>
+  forces::Augmentation
+  PenaltyContact<dim>::update_bounds(const VectorType  &u,
+                                     const double       time,
+                                     const unsigned int update,
+                                     std::string       &message)
+  {
+    // The penalty's friction bound <- mu p at every point in contact,
+    // stick points kept; points that lost their pressure lose their state.
+    std::unordered_map<std::uint64_t, State> updated;
+    double                                   worst = 0;
+    auto face = [&](const Face &, const std::vector<Point_> &points) {
+      for (const Point_ &p : points)
+        {
+          const double mu = obstacle_list[p.obstacle].friction;
+          if (mu == 0)
+            continue;
+          // How far the bound moves, over k_t: the change of the slip a
+          // stuck point may take (length units).
+          const double bound = mu * p.pressure;
+          worst
+            = max_keeping_nan(worst,
+                              std::abs(bound - p.bound) / (tangential * p.k));
+          if (p.pressure > 0)
+            {
+              State state;
+              if (const auto s = states.find(p.key); s != states.end())
+                state = s->second;
+              state.bound = bound;
+              updated.emplace(p.key, state);
+            }
+        }
+    };
+    for_each_face(u, time, face);
+    states.swap(updated);
+    worst = mpi_max_keeping_nan(worst, parallel_tools::communicator());
+    if (worst <= tolerance)
+      return forces::Augmentation::satisfied;
+    if (update + 1 < max_updates && std::isfinite(worst))
+      return forces::Augmentation::again;
+    std::ostringstream why;
+    why << "the friction bounds (mu times the contact pressure) still moved "
+           "by "
+        << worst << " over the tangential penalty (length units; 'Contact/Gap "
+        << "tolerance' " << tolerance << ") after " << update + 1
+        << " updates ('Contact/Maximum multiplier updates')";
+    message = why.str();
+    return forces::Augmentation::failed;
+  }
+
+
+  template <int dim>
   void
   PenaltyContact<dim>::begin_step(const VectorType &u, const double time)
   {
@@ -555,20 +616,46 @@ namespace tissuefem::contact
         return;
       }
     // The stick points of the step's end: a point that slides takes its
-    // stick point along (its traction tau stays on the friction bound); a
-    // stuck one keeps it; one without takes where it is.
-    std::vector<std::pair<std::uint64_t, Point<dim>>> moved;
+    // stick point along (its traction stays on the friction bound); a
+    // stuck one keeps it; one without takes where it is. With the penalty
+    // the points in contact are those of the step's end, with the bound
+    // mu p (which an explicit step's next force uses); the augmented
+    // Lagrangian's are those of its last update.
+    std::vector<std::pair<std::uint64_t, State>> moved;
     auto face = [&](const Face &, const std::vector<Point_> &points) {
       for (const Point_ &p : points)
         if (obstacle_list[p.obstacle].friction > 0 && p.pressure > 0)
-          moved.emplace_back(p.key,
-                             !p.anchor || friction(p).slides ? p.y : *p.anchor);
+          {
+            State state;
+            state.bound    = obstacle_list[p.obstacle].friction * p.pressure;
+            state.anchored = true;
+            state.anchor   = p.anchor ? *p.anchor : p.y;
+            if (!p.anchor)
+              {
+                moved.emplace_back(p.key, state);
+                continue;
+              }
+            if (const Coulomb<dim> law = friction(p); law.slides)
+              {
+                // The augmented Lagrangian's tau carries the traction; the
+                // penalty's spring does, stretched to the bound behind the
+                // point: t = -k_t (y - a) along the tangent plane.
+                state.anchor = p.y;
+                if (!augmented)
+                  state.anchor += law.traction / (tangential * p.k);
+              }
+            moved.emplace_back(p.key, state);
+          }
     };
     for_each_face(u, time, face);
-    for (const auto &[key, anchor] : moved)
-      if (const auto s = states.find(key); s != states.end())
+    if (!augmented)
+      states.clear();
+    for (const auto &[key, state] : moved)
+      if (!augmented)
+        states.emplace(key, state);
+      else if (const auto s = states.find(key); s != states.end())
         {
-          s->second.anchor   = anchor;
+          s->second.anchor   = state.anchor;
           s->second.anchored = true;
         }
     committed = states;

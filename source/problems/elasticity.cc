@@ -42,11 +42,12 @@ namespace tissuefem::problems
   Elasticity<dim>::setup()
   {
     scene = std::make_unique<Scene<dim>>(prm, run_context.parameter_directory);
-    if (!scene->tools.empty())
-      require(refinement_parameters.indicator == "none",
+    for (const auto &[name, tool] : scene->tools)
+      require(tool->allows_refinement()
+                || refinement_parameters.indicator == "none",
               "Mesh refinement/Indicator",
-              "must be 'none' with a tool (held vertices are those of the "
-              "initial mesh)");
+              "must be 'none' with the " + name
+                + " tool (held vertices are those of the initial mesh)");
     integrator
       = time::IntegratorRegistry::instance().create(time_parameters.integrator,
                                                     prm);
@@ -548,7 +549,8 @@ namespace tissuefem::problems
            << ", integrator '" << time_parameters.integrator
            << "', linear solver '" << linear_solver_parameters.type << "'\n"
            << geometry::describe_boundary_ids(scene->triangulation) << '\n'
-           << scene->boundary_conditions->describe_load_factor() << std::endl;
+           << scene->boundary_conditions->describe_load_factor() << '\n'
+           << scene->boundary_conditions->describe_self_contact() << std::endl;
     // The table is printed at the end of a finished run, before the line
     // that says where the files went.
     TimerOutput timer(screen, TimerOutput::never, TimerOutput::wall_times);

@@ -2,6 +2,7 @@
 #include <tissuefem/base/parallel.h>
 #include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/contact/penalty_contact.h>
+#include <tissuefem/contact/self_contact.h>
 #include <tissuefem/geometry/mesh_parts.h>
 #include <tissuefem/scene/scene.h>
 #include <tissuefem/time/interface.h>
@@ -38,12 +39,12 @@ namespace tissuefem
   namespace
   {
     /**
-     * Only these integrators take the frozen self-contact force
-     * (Operators::begin_step()), pass the time of each force evaluation
-     * that a moving obstacle needs, and update the contact multipliers
-     * (Operators::augment()); others would ignore them unseen. The plain
-     * penalty is a force of (u, t): linearly implicit Euler and the damped
-     * central difference (without an active region) take it too.
+     * Only these integrators begin each step (Operators::begin_step(),
+     * where self contact takes its weights), pass the time of each force
+     * evaluation that a moving obstacle needs, and update the contact
+     * multipliers (Operators::augment()); others would ignore them unseen. The
+     * plain penalty is a force of (u, t): linearly implicit Euler and the
+     * damped central difference (without an active region) take it too.
      */
     template <int dim>
     void
@@ -72,9 +73,12 @@ namespace tissuefem
         = "needs Time integration/Integrator = backward Euler or "
           "quasistatic (not '"
           + integrator + "')";
-      require(self_contact_pressure == 0 || implicit_one_step,
+      require(self_contact_pressure == 0 || implicit_one_step
+                || integrator == "linearly implicit Euler",
               "Boundary conditions/Self contact pressure",
-              needs);
+              "needs Time integration/Integrator = backward Euler, "
+              "quasistatic or linearly implicit Euler (not '"
+                + integrator + "')");
       require(
         obstacles.empty() || implicit_one_step || (penalty && takes_penalty),
         obstacles.empty() ? std::string() : obstacles.front().slot + "/Shape",
@@ -85,6 +89,43 @@ namespace tissuefem
                     + integrator + "'"
                     + (active_region ? " with an active region" : "") + ")"
                 : "contact by the augmented Lagrangian " + needs);
+    }
+
+    /**
+     * 'Self contact pressure = automatic': crushed tetrahedra (triangles)
+     * of the invertible model can settle tangled, which elasticity holds
+     * (doc/tests.md, inversion recovery), so there self contact is on at
+     * the shear modulus, inside the window of pressures that untangled
+     * every crushed start; hexahedra recover by elasticity alone.
+     */
+    template <int dim>
+    void
+    resolve_self_contact(ParameterHandler                    &prm,
+                         const materials::MaterialParameters &materials,
+                         boundary::BoundaryParameters        &boundary,
+                         const Triangulation<dim>            &mesh)
+    {
+      double shear = 0;
+      for (unsigned int m = 0; m < materials.model_names.size(); ++m)
+        if (materials.model_names[m] == "invertible neo-Hookean")
+          shear = std::max(shear, materials.constants[m].mu);
+      time::TimeParameters time_parameters;
+      time_parameters.parse_parameters(prm);
+      const std::string &integrator   = time_parameters.integrator;
+      const bool         begins_steps = integrator == "backward Euler"
+                                || integrator == "quasistatic"
+                                || integrator == "linearly implicit Euler";
+      const bool  simplices = !mesh.all_reference_cells_are_hyper_cube();
+      std::string why
+        = shear == 0   ? "no invertible neo-Hookean material"
+          : !simplices ? "the invertible model on quadrilaterals or hexahedra, "
+                         "which recover by elasticity alone"
+          : !begins_steps ? "integrator '" + integrator + "' does not take it"
+                          : "the shear modulus of the invertible neo-Hookean "
+                            "model on triangles or tetrahedra";
+      boundary.resolve_self_contact(shear,
+                                    shear > 0 && simplices && begins_steps,
+                                    why);
     }
   } // namespace
 
@@ -121,6 +162,10 @@ namespace tissuefem
       boundary_parameters.resolve_load_factor(
         !integrates_in_time(prm) && !manufactured_parameters.enabled, end_time);
     }
+    resolve_self_contact<dim>(prm,
+                              material_parameters,
+                              boundary_parameters,
+                              triangulation);
     boundary_conditions = std::make_unique<boundary::BoundaryConditions<dim>>(
       boundary_parameters);
     boundary_conditions->check_boundary_ids(triangulation);
@@ -180,6 +225,11 @@ namespace tissuefem
           prm, *discretization, std::move(obstacles), modulus);
         solid->add_force_contribution(obstacle_contact);
       }
+    if (boundary_parameters.self_contact_pressure > 0)
+      solid->add_force_contribution(std::make_shared<contact::SelfContact<dim>>(
+        *discretization, boundary_parameters.self_contact_pressure));
+    for (auto &[name, t] : tools)
+      t->attach(obstacle_contact.get());
     check_initial_data();
   }
 

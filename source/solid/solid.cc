@@ -10,7 +10,6 @@
 #include <tissuefem/solid/edge_length_element.h>
 #include <tissuefem/solid/mean_dilatation.h>
 #include <tissuefem/solid/quantities.h>
-#include <tissuefem/solid/self_contact.h>
 #include <tissuefem/solid/solid.h>
 
 #include <Epetra_CrsMatrix.h>
@@ -100,7 +99,6 @@ namespace tissuefem::solid
     fibre_field.build(discretization, materials);
     discretization.initialize_vector(ghosted_u, true);
     discretization.initialize_vector(ghosted_w, true);
-    step_contact_force.clear();
     build_direct_access();
     lean.reset();
     if (discretization.lean_kernel
@@ -261,8 +259,6 @@ namespace tissuefem::solid
     request.jacobian = with_jacobian;
     request.rows     = &discretization.constraints;
     assemble(request, residual);
-    if (step_contact_force.size() == residual.size())
-      residual.add(-1., step_contact_force);
   }
 
 
@@ -276,16 +272,6 @@ namespace tissuefem::solid
         for (const auto &contribution : contributions)
           contribution->begin_step(ghosted_u, time);
       }
-    step_contact_force.clear();
-    if (boundary_conditions.self_contact_pressure == 0)
-      return;
-    make_ghosted(u, ghosted_u);
-    discretization.initialize_assembly_vector(step_contact_force);
-    add_overlap_force(discretization,
-                      ghosted_u,
-                      boundary_conditions.self_contact_pressure,
-                      discretization.constraints,
-                      step_contact_force);
   }
 
 
@@ -369,8 +355,6 @@ namespace tissuefem::solid
     request.rows          = &lifting_constraints;
     request.inhomogeneous = true;
     assemble(request, residual);
-    if (step_contact_force.size() == residual.size())
-      residual.add(-1., step_contact_force);
   }
 
 

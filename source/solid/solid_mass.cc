@@ -114,8 +114,6 @@ namespace tissuefem::solid
       discretization.hanging_node_constraints.distribute(x);
     external_force(time, force);
     energy -= force * x;
-    if (step_contact_force.size() == x.size())
-      energy -= step_contact_force * x;
     const auto start = std::chrono::steady_clock::now();
     for (const auto &contribution : contributions)
       energy += contribution->energy(ghosted, time);

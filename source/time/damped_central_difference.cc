@@ -192,6 +192,9 @@ namespace tissuefem::time
       state.a.swap(a);
       state.time += h;
       report.dt = h;
+      // Contact with friction moves its stick points (and takes the
+      // friction bound of this state for the next force).
+      solid.accept_step(state.u, state.time);
       check_stability(state, h);
       return report;
     }

@@ -52,45 +52,7 @@ namespace tissuefem::tool
                       "1e30",
                       Patterns::Double(),
                       "When the tool lets go (time units), > 'Grasp time'.");
-    prm.declare_entry("Haptic rate",
-                      "500",
-                      Patterns::Double(),
-                      "Force updates per unit time for the haptic device "
-                      "(Hz if SI), written to haptic_force.csv; > 0.");
-    prm.declare_entry("Force extrapolation",
-                      "position",
-                      Patterns::Selection("position|time"),
-                      "How the haptic force is extrapolated between "
-                      "simulation steps: 'position' = last force plus a "
-                      "secant stiffness (estimated from the force and tool "
-                      "position changes so far) times the tool's motion "
-                      "since; 'time' = linear in time from the last two "
-                      "steps.");
-    prm.declare_entry("Live port",
-                      "-1",
-                      Patterns::Integer(-1, 65535),
-                      "-1: the tool follows 'Trajectory' or 'Trajectory "
-                      "file'. Otherwise it follows a live client (a device "
-                      "driver or game engine) connected over TCP to "
-                      "127.0.0.1 at this port (0: any free port; the port "
-                      "is printed and written to <Output directory>/"
-                      "live_port): the client sends lines 't x y z' (time, "
-                      "tool position; d(t) is the position minus the "
-                      "first), tissuefem answers each with 't fx fy fz', "
-                      "the force extrapolated to that time, and simulates "
-                      "a step once positions cover its end. 'bye' or "
-                      "closing the connection ends the run cleanly.");
-    prm.declare_entry("Live timeout",
-                      "5",
-                      Patterns::Double(),
-                      "Wall-clock seconds to wait for the live client to "
-                      "connect or send; a silent client ends the run "
-                      "cleanly with the outputs so far; > 0.");
-    prm.declare_entry("Haptic budget",
-                      "0.002",
-                      Patterns::Double(),
-                      "Wall-clock seconds one haptic update may take (1/500 "
-                      "s); the end of a run reports the share within it.");
+    HapticParameters::declare_parameters(prm);
     prm.leave_subsection();
   }
 
@@ -105,13 +67,9 @@ namespace tissuefem::tool
     trajectory_file = prm.get("Trajectory file");
     grasp_time      = prm.get_double("Grasp time");
     release_time    = prm.get_double("Release time");
-    haptic_rate     = prm.get_double("Haptic rate");
-    extrapolation   = prm.get("Force extrapolation");
-    haptic_budget   = prm.get_double("Haptic budget");
-    live_port       = prm.get_integer("Live port");
-    live_timeout    = prm.get_double("Live timeout");
+    enabled         = !Utilities::trim(grasp_point).empty();
+    haptic.parse_parameters(prm, "Tool", enabled);
     prm.leave_subsection();
-    enabled = !Utilities::trim(grasp_point).empty();
     if (!enabled)
       return;
     require(std::isfinite(radius) && radius > 0,
@@ -121,15 +79,6 @@ namespace tissuefem::tool
               && release_time > grasp_time,
             "Tool/Release time",
             "must be finite and later than 'Grasp time'");
-    require(std::isfinite(haptic_rate) && haptic_rate > 0,
-            "Tool/Haptic rate",
-            "must be > 0 (updates per time unit)");
-    require(std::isfinite(haptic_budget) && haptic_budget > 0,
-            "Tool/Haptic budget",
-            "must be > 0 (seconds)");
-    require(std::isfinite(live_timeout) && live_timeout > 0,
-            "Tool/Live timeout",
-            "must be > 0 (seconds)");
   }
 
 
@@ -137,6 +86,7 @@ namespace tissuefem::tool
   GraspTool<dim>::GraspTool(const ToolParameters     &p,
                             const Triangulation<dim> &mesh)
       : parameters(p)
+      , haptic(p.haptic, [this](const double t) { return displacement(t); })
   {
     const auto coordinates
       = parse_numbers(p.grasp_point, "Parameter 'Tool/Grasp point'");
@@ -156,7 +106,7 @@ namespace tissuefem::tool
             "holds no vertex: none lies within " + std::to_string(p.radius)
               + " of 'Grasp point'");
 
-    if (p.live_port >= 0)
+    if (p.haptic.live_port >= 0)
       {
         // Positions arrive during the run (synchronize()).
       }
@@ -171,11 +121,10 @@ namespace tissuefem::tool
         // silences muparser's own report).
         trajectory = make_function<dim>(p.trajectory, dim, "Tool/Trajectory");
       }
-    for (unsigned int d = 0; d < dim && p.live_port < 0; ++d)
+    for (unsigned int d = 0; d < dim && p.haptic.live_port < 0; ++d)
       require(std::isfinite(displacement(p.grasp_time)[d]),
               "Tool/Trajectory",
               "is not finite at the grasp time");
-    next_haptic_time = 0;
   }
 
 
@@ -239,13 +188,7 @@ namespace tissuefem::tool
   void
   GraspTool<dim>::connect(const std::string &directory)
   {
-    // Every process takes part in the link (it shares the positions).
-    if (parameters.live_port >= 0)
-      link = std::make_unique<LiveLink>(parameters.live_port,
-                                        parameters.live_timeout,
-                                        dim,
-                                        1. / parameters.haptic_rate,
-                                        directory + "/live_port");
+    haptic.connect(directory);
   }
 
 
@@ -253,101 +196,14 @@ namespace tissuefem::tool
   Record<dim>
   GraspTool<dim>::record(const time::State &state, solid::Solid<dim> &solid)
   {
-    const auto     values = solid.held_force(state.u, state.a, state.time);
-    Tensor<1, dim> force;
+    const auto  values = solid.held_force(state.u, state.a, state.time);
+    Record<dim> result;
     for (unsigned int d = 0; d < dim; ++d)
-      force[d] = values[d];
-    const Tensor<1, dim> position = displacement(state.time);
-    Record<dim>          result;
-    result.position = position;
-    result.force    = force;
+      result.force[d] = values[d];
+    result.position = displacement(state.time);
     result.engaged  = holding;
-    max_force       = std::max(max_force, force.norm());
-
-    // Haptic updates in (t_n, t_{n+1}], extrapolated from data up to t_n.
-    if (last_time)
-      {
-        const double t0 = *last_time, t1 = state.time;
-        const double period = 1. / parameters.haptic_rate;
-        if (next_haptic_time <= t0)
-          next_haptic_time = (std::floor(t0 / period) + 1) * period;
-        for (; next_haptic_time <= t1 * (1 + 1e-12); next_haptic_time += period)
-          {
-            const double         tau      = next_haptic_time;
-            const auto           start    = std::chrono::steady_clock::now();
-            const Tensor<1, dim> estimate = extrapolated_force(tau);
-            ++haptic_updates;
-            if (seconds_since(start) <= parameters.haptic_budget)
-              ++within_budget;
-            const Tensor<1, dim> reference
-              = last_force + (force - last_force) * ((tau - t0) / (t1 - t0));
-            const double error = (estimate - reference).norm();
-            max_error          = std::max(max_error, error);
-            sum_error += error;
-            result.haptic.push_back({tau, estimate, error});
-          }
-        // Update the rate and the secant stiffness (Broyden), unless the
-        // tool grasped or let go in between (a jump, not a trend).
-        if (holding && held_at_last_record)
-          {
-            rate                    = (force - last_force) / (t1 - t0);
-            have_rate               = true;
-            const Tensor<1, dim> dx = position - last_position;
-            if (dx.norm_square() > 0)
-              stiffness
-                += outer_product((force - last_force) - stiffness * dx, dx)
-                   / dx.norm_square();
-          }
-        else
-          {
-            rate      = 0;
-            have_rate = false;
-            stiffness = 0;
-          }
-      }
-    held_at_last_record = holding;
-    last_time           = state.time;
-    last_force          = force;
-    last_position       = position;
-    if (link)
-      {
-        // What the communication thread answers with until the next step
-        // (as extrapolated_force()).
-        LiveLink::ForceModel model;
-        model.valid            = true;
-        model.holding          = holding;
-        model.time             = state.time;
-        const bool by_position = parameters.extrapolation != "time";
-        for (unsigned int i = 0; i < dim; ++i)
-          {
-            model.force.push_back(force[i]);
-            model.position.push_back(position[i]);
-            model.rate.push_back(!by_position && have_rate ? rate[i] : 0.);
-            for (unsigned int j = 0; j < dim; ++j)
-              model.stiffness.push_back(by_position ? stiffness[i][j] : 0.);
-          }
-        link->set_model(model);
-        link->set_stepping(false);
-      }
+    result.haptic   = haptic.update(state.time, result.force, holding);
     return result;
-  }
-
-
-  template <int dim>
-  Tensor<1, dim>
-  GraspTool<dim>::extrapolated_force(const double tau) const
-  {
-    if (!last_time || !holding)
-      return Tensor<1, dim>(); // nothing simulated yet, or let go
-    Tensor<1, dim> estimate = last_force;
-    if (parameters.extrapolation == "time")
-      {
-        if (have_rate)
-          estimate += rate * (tau - *last_time);
-      }
-    else
-      estimate += stiffness * (displacement(tau) - last_position);
-    return estimate;
   }
 
 
@@ -355,25 +211,7 @@ namespace tissuefem::tool
   bool
   GraspTool<dim>::synchronize(const double time)
   {
-    if (!link)
-      return true;
-    const double eps = 1e-12 * std::max(1., std::abs(time));
-    while (table.empty() || table.last_time() < time - eps)
-      {
-        if (link->ended())
-          return false;
-        // The link's thread has answered them already; out-of-order
-        // positions are answered but not followed (append() drops them).
-        for (const auto &sample : link->receive())
-          {
-            Tensor<1, dim> position;
-            for (unsigned int d = 0; d < dim && d < sample.position.size(); ++d)
-              position[d] = sample.position[d];
-            table.append(sample.time, position);
-          }
-      }
-    link->set_stepping(true);
-    return true;
+    return haptic.synchronize(time, table);
   }
 
 
@@ -381,7 +219,7 @@ namespace tissuefem::tool
   std::string
   GraspTool<dim>::live_end() const
   {
-    return link && link->ended() ? link->reason() : std::string();
+    return haptic.live_end();
   }
 
 
@@ -389,22 +227,8 @@ namespace tissuefem::tool
   std::string
   GraspTool<dim>::summary() const
   {
-    std::ostringstream s;
-    s << "tool: " << vertices.size()
-      << " vertices held; haptic: " << haptic_updates << " updates at "
-      << parameters.haptic_rate << " per time unit, " << std::setprecision(3)
-      << (haptic_updates ? 100. * within_budget / haptic_updates : 100.)
-      << " % within the budget of " << parameters.haptic_budget
-      << " s; extrapolation error ('" << parameters.extrapolation
-      << "') against the simulated force: mean "
-      << (haptic_updates ? sum_error / haptic_updates : 0.) << ", max "
-      << max_error << " (force units; largest tool force " << max_force << ")";
-    if (link)
-      s << "\nlive client: " << link->samples << " positions received; "
-        << link->report(last_time ? *last_time : 0.) << "; "
-        << (link->ended() ? "session ended: " + link->reason()
-                          : std::string("session open at the end"));
-    return s.str();
+    return "tool: " + std::to_string(vertices.size()) + " vertices held; "
+           + haptic.summary();
   }
 
   template <int dim>

@@ -1,38 +1,50 @@
 #!/usr/bin/env bash
-# A scripted live client for tissuefem's 'Tool/Live port' (tests/live):
-#   live_client.sh TISSUEFEM EXPECTED_OUTPUT WORKDIR MODE
-# starts tissuefem on live_pull_bar.prm in WORKDIR, reads the port it
+# A scripted live client for tissuefem's 'Tool/Live port' and 'Contact
+# tool/Live port' (tests/live):
+#   live_client.sh TISSUEFEM EXPECTED_OUTPUT WORKDIR MODE [SCENE POSITION]
+# starts tissuefem on SCENE (default live_pull_bar.prm) in WORKDIR, reads
+# the port it
 # listens on from results/live_port, connects over 127.0.0.1 (bash's
 # /dev/tcp) and, by MODE:
-#   full    sends the positions 0.1 t at 500 Hz for t in [0, 1], reading the
+#   full    sends the positions POSITION (awk expressions of t separated by
+#           spaces; default the bar's 0.1*t) at 500 Hz for t in [0, 1], reading the
 #           force answered to each, then 'bye'; tissuefem must exit 0 and its
 #           summary file equal EXPECTED_OUTPUT (the closed form of
 #           prm/tool_pull_bar_1d), and every answer must be a line of
-#           finite numbers;
+#           finite numbers, one per coordinate and the time;
 #   silent  sends positions up to t = 0.3 and then nothing: tissuefem must
 #           end the run after its 'Live timeout' (1 s) with exit status 0,
 #           say why, and leave complete outputs up to t = 0.25.
-set -u
+set -u -f
 exe=$1 expected=$2 work=$3 mode=$4
 here=$(cd "$(dirname "$0")" && pwd)
+scene=${5:-$here/live_pull_bar.prm}
+position=${6:-0.1*t}
 rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
 fail() { echo "live test ($mode): $*"; kill "$pid" 2>/dev/null; exit 1; }
-"$exe" "$here/live_pull_bar.prm" > run.log 2>&1 &
+"$exe" "$scene" > run.log 2>&1 &
 pid=$!
 for _ in $(seq 100); do [ -s results/live_port ] && break; sleep 0.1; done
 [ -s results/live_port ] || fail "no results/live_port after 10 s"
 port=$(cat results/live_port)
 exec 3<>"/dev/tcp/127.0.0.1/$port" || fail "cannot connect to port $port"
+# The awk program that prints 't x [y [z]]' at t = 0.002 k.
+program='BEGIN { t = k * 0.002; printf "%.6g", t'
+for c in $position; do program+="; printf \" %.6g\", $c"; done
+program+=' }'
 last=500
 [ "$mode" = silent ] && last=150
 for k in $(seq 0 $last); do
-  line=$(awk -v k="$k" 'BEGIN { printf "%.6g %.6g", k * 0.002, 0.1 * k * 0.002 }')
+  line=$(awk -v k="$k" "$program")
   echo "$line" >&3
   read -r -t 10 answer <&3 || fail "no answer to '$line'"
   set -- $answer
-  [ $# -eq 2 ] || fail "answer '$answer' to '$line' is not 't f'"
-  awk -v a="$1" -v b="$2" 'BEGIN { exit !(a == a + 0 && b == b + 0) }' ||
-    fail "answer '$answer' is not numeric"
+  [ $# -eq $(echo $line | wc -w) ] ||
+    fail "answer '$answer' to '$line' is not 't f...' (one per coordinate)"
+  for value in "$@"; do
+    awk -v a="$value" 'BEGIN { exit !(a == a + 0 && a - a == 0) }' ||
+      fail "answer '$answer' is not numeric"
+  done
 done
 if [ "$mode" = full ]; then
   echo bye >&3

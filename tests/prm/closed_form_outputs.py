@@ -227,7 +227,7 @@ contact_floor_block_2d()
 contact_floor_block_2d("contact_floor_block_lie_2d", (0, 30), (0, 1), ())
 
 
-def contact_patch(name, dim, cells, unknowns, probes, names=None):
+def contact_patch(name, dim, cells, unknowns, probes, names=None, tool=False):
     # A rigid flat face pushed by 0.05 t into a block of height H = 0.5 on
     # rollers, frictionless, linear elastic (E = 1, nu = 0.3): homogeneous
     # uniaxial stress, eps = -0.1 t along the last axis, the other stresses
@@ -247,6 +247,10 @@ def contact_patch(name, dim, cells, unknowns, probes, names=None):
         for i, X in enumerate(probes):
             u = [nu1 * 0.1 * t * x for x in X[:-1]] + [-0.1 * t * X[-1]]
             lines.append("t = %s probe %d u = %s" % (fmt(t), i, " ".join(fmt(c + 0.0) for c in u)))
+        if tool:
+            # The tissue pushes the press back: minus its force on the tissue.
+            back = ["0"] * (dim - 1) + [fmt(p)]
+            lines.append("t = %s tool force = %s" % (fmt(t), " ".join(back)))
     # Psi V = 1/2 sigma eps V with V = 0.5 (unit cross-section, H = 0.5).
     energy = 0.5 * E1 * 0.1 * 0.1 * 0.5
     lines.append("final elastic energy " + fmt(energy))
@@ -257,6 +261,8 @@ def contact_patch(name, dim, cells, unknowns, probes, names=None):
 
 contact_patch("contact_patch_2d", 2, 8, 30, [(1, 0.5), (0.5, 0.25), (0.25, 0.5)])
 contact_patch("contact_patch_recorded_2d", 2, 8, 30, [(1, 0.5), (0.5, 0.25), (0.25, 0.5)])
+contact_patch("contact_tool_patch_2d", 2, 8, 30, [(1, 0.5), (0.5, 0.25), (0.25, 0.5)],
+              tool=True)
 contact_patch("contact_patch_3d", 3, 20, 54,
               [(1, 1, 0.5), (0.5, 0.5, 0.25), (0.3, 0.7, 0.5)],
               ("contact_patch_3d", "contact_patch_3d.mpirun=2"))

@@ -2,7 +2,7 @@
 // rest shape from crushed and scrambled starts, many seeds each (see
 // crushed_starts.h for the starts and the measure), with self contact
 // ('Boundary conditions/Self contact pressure' = 500 Pa, 1.3 times the
-// shear modulus of 385 Pa; solid/self_contact.h). Without it, from nodes
+// shear modulus of 385 Pa; contact/self_contact.h). Without it, from nodes
 // within 1 % of a line or a point and from random scrambles of two cell
 // sizes, the tetrahedra settle in tangled equilibria (9 of the 18 starts:
 // tangled share 0.005 to 0.78 by solid/self_overlap.h, six of them

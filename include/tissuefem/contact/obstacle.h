@@ -6,6 +6,7 @@
 #include <tissuefem/base/trajectory_table.h>
 #include <tissuefem/contact/shape.h>
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -51,6 +52,23 @@ namespace tissuefem::contact
       return shape->distance(x - offset);
     }
 
+    /// Makes the shape follow @p motion (a translation against time, length
+    /// units; a live device's) instead of its parameters' motion.
+    void
+    follow(std::function<Tensor<1, dim>(const double)> motion)
+    {
+      follower = std::move(motion);
+      moves    = true;
+    }
+
+    /// Whether its parameters give it a motion ('Motion' names t or a
+    /// 'Motion file' is set).
+    bool
+    has_own_motion() const
+    {
+      return recorded || own_motion_names_t;
+    }
+
     /// The name it carries in every output.
     std::string name;
 
@@ -69,6 +87,9 @@ namespace tissuefem::contact
     std::shared_ptr<FunctionParser<dim>> motion;
     /// 'Motion file' (null: 'Motion').
     std::shared_ptr<const TrajectoryTable<dim>> recorded;
+    /// A motion set by follow() (empty: the parameters').
+    std::function<Tensor<1, dim>(const double)> follower;
+    bool                                        own_motion_names_t = false;
   };
 
   /// Slots 'Obstacle 1' .. 'Obstacle max_obstacles' in 'Contact'.

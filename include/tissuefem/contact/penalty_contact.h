@@ -58,15 +58,27 @@ namespace tissuefem::contact
    * The multipliers carry over from step to step (a warm start) and are
    * dropped when the mesh changes.
    *
-   * With an obstacle's 'Friction coefficient' mu > 0 (augmented Lagrangian
-   * only), a point in contact also carries a stick point and a tangential
-   * multiplier tau, and Coulomb's law (coulomb.h) with the bound mu lambda
-   * adds its tangential force; Uzawa's update moves tau to that force, and
-   * the step is solved again until tau moves by less than k times 'Gap
-   * tolerance' (a stuck point then slips by less than the tolerance). A
-   * point that comes into contact during a step sticks where it was at the
-   * step's start (begin_step()); the stick points of the points that slide
-   * move with them only when a step is accepted (accept_step()).
+   * With an obstacle's 'Friction coefficient' mu > 0, a point in contact
+   * also carries a stick point and a friction bound, and Coulomb's law
+   * (coulomb.h) adds its tangential force, the traction of a tangential
+   * spring from the stick point (k_t = 'Tangential penalty ratio' k) capped
+   * at the bound. The bound is held fixed over a Newton solve, so that the
+   * friction force has a potential and a symmetric tangent:
+   * - with the augmented Lagrangian it is mu lambda, and the point also
+   *   carries a tangential multiplier tau; Uzawa's update moves tau to the
+   *   traction, and the step is solved again until tau moves by less than
+   *   k_t times 'Gap tolerance' (a stuck point then slips by less than the
+   *   tolerance);
+   * - with the penalty it is mu p: after a converged solve the bound is set
+   *   to mu times the point's pressure and the step solved again until it
+   *   changes by less than k_t times 'Gap tolerance' (a fixed point on the
+   *   bound, as the multipliers' updates are). A stuck point keeps the
+   *   tangential spring's slip, up to mu p / k_t. Explicit steps take the
+   *   bound of the step before (accept_step()).
+   * A point that comes into contact during an implicit step sticks where
+   * it was at the step's start (begin_step()), during an explicit step
+   * where it ends it; the stick points of the points that slide move with
+   * them only when a step is accepted (accept_step()).
    */
   template <int dim>
   class PenaltyContact : public forces::Interface<dim>
@@ -179,13 +191,20 @@ namespace tissuefem::contact
       return obstacle_list;
     }
 
+    /// The obstacles, for a tool that moves one (Obstacle::follow()).
+    std::vector<Obstacle<dim>> &
+    obstacles()
+    {
+      return obstacle_list;
+    }
+
     /// Whether it carries state from step to step (the augmented
     /// Lagrangian's multipliers, friction's stick points), which a
     /// checkpoint does not hold.
     bool
     keeps_history() const
     {
-      return augmented;
+      return augmented || has_friction();
     }
 
   private:
@@ -194,7 +213,8 @@ namespace tissuefem::contact
     /// the contact states, its pressure p = max(0, lambda - k g), whether
     /// it is active (lambda - k g >= 0), its position y in the obstacle's
     /// frame, and with friction its stick
-    /// point (null: none), friction bound mu lambda and tangential
+    /// point (null: none), friction bound (mu lambda, or the penalty's
+    /// mu p of the last solve) and tangential
     /// multiplier tau.
     struct Point_
     {
@@ -218,7 +238,9 @@ namespace tissuefem::contact
     /// obstacle's frame) once a step has been accepted in contact.
     struct State
     {
-      double         lambda = 0;
+      double lambda = 0;
+      /// The penalty method's friction bound, mu p (stress units).
+      double         bound = 0;
       Tensor<1, dim> tau;
       bool           anchored = false;
       Point<dim>     anchor;
@@ -238,6 +260,13 @@ namespace tissuefem::contact
                   const std::function<void(const Face &,
                                            const std::vector<Point_> &)> &face,
                   const bool every = false) const;
+
+    /// The penalty's fixed point on the friction bounds (augment()).
+    forces::Augmentation
+    update_bounds(const VectorType  &u,
+                  const double       time,
+                  const unsigned int update,
+                  std::string       &message);
 
     /// Coulomb's law at the point @p p, which has a stick point.
     Coulomb<dim>

@@ -256,7 +256,8 @@ namespace tissuefem::solid
       return carry;
     }
 
-    /// The self-contact force (self_contact.h) at @p u.
+    /// Tells the force contributions that an attempt at a step starts from
+    /// @p u at @p time.
     void
     begin_step(const VectorType &u, const double time) override;
 
@@ -571,9 +572,6 @@ namespace tissuefem::solid
     /// forces, before the caller compresses.
     void
     add_contributions(const Request &request, VectorType &residual);
-    /// The self-contact force of the step begun last (begin_step()), as
-    /// assembled on the constrained rows; empty without self contact.
-    VectorType step_contact_force;
 
     /**
      * Direct access, computed once per mesh: for each cached cell, the

@@ -7,8 +7,8 @@
 #include <tissuefem/base/trajectory_table.h>
 #include <tissuefem/solid/solid.h>
 #include <tissuefem/time/interface.h>
+#include <tissuefem/tool/haptic_renderer.h>
 #include <tissuefem/tool/interface.h>
-#include <tissuefem/tool/live_link.h>
 
 #include <memory>
 #include <optional>
@@ -28,12 +28,10 @@ namespace tissuefem::tool
     parse_parameters(ParameterHandler &prm);
 
     bool        enabled = false;
-    std::string grasp_point, trajectory, trajectory_file, extrapolation;
-    double      radius = 0, grasp_time = 0, release_time = 0, haptic_rate = 0,
-           haptic_budget = 0;
-    /// -1: no live client; else the loopback port (0: any free one).
-    int    live_port    = -1;
-    double live_timeout = 5;
+    std::string grasp_point, trajectory, trajectory_file;
+    double      radius = 0, grasp_time = 0, release_time = 0;
+    /// Haptic rate, force extrapolation, live port.
+    HapticParameters haptic;
   };
 
   /**
@@ -111,12 +109,7 @@ namespace tissuefem::tool
     displacement(const double time) const;
 
   private:
-    /// The force at @p tau extrapolated from the last recorded step.
-    Tensor<1, dim>
-    extrapolated_force(const double tau) const;
-
     ToolParameters                       parameters;
-    std::unique_ptr<LiveLink>            link;
     Point<dim>                           grasp_point;
     std::vector<unsigned int>            vertices;
     std::unique_ptr<FunctionParser<dim>> trajectory;
@@ -124,14 +117,7 @@ namespace tissuefem::tool
     TrajectoryTable<dim> table;
     bool                 holding = false, released = false;
     double               grasp_time_actual = 0;
-
-    // Force history for extrapolation.
-    std::optional<double> last_time;
-    Tensor<1, dim>        last_force, last_position, rate;
-    Tensor<2, dim>        stiffness;
-    bool                  have_rate = false, held_at_last_record = false;
-    double                next_haptic_time = 0;
-    unsigned int          haptic_updates = 0, within_budget = 0;
-    double                max_error = 0, sum_error = 0, max_force = 0;
+    /// The forces the device feels between steps.
+    HapticRenderer<dim> haptic;
   };
 } // namespace tissuefem::tool

@@ -5,6 +5,7 @@
 #include <deal.II/grid/tria.h>
 
 #include <tissuefem/base/registry.h>
+#include <tissuefem/contact/penalty_contact.h>
 #include <tissuefem/solid/solid.h>
 #include <tissuefem/time/interface.h>
 
@@ -75,6 +76,25 @@ namespace tissuefem::tool
     virtual void
     act(const time::State &state, solid::Solid<dim> &solid)
       = 0;
+
+    /**
+     * Called once by the scene after it has set up contact with its
+     * obstacles (@p contact; null without obstacles), before anything runs:
+     * a tool that is an obstacle finds it there (and may move it).
+     */
+    virtual void
+    attach(contact::PenaltyContact<dim> *contact)
+    {
+      (void)contact;
+    }
+
+    /// Whether the tool keeps working when the mesh is refined (a tool that
+    /// holds the initial mesh's vertices does not).
+    virtual bool
+    allows_refinement() const
+    {
+      return false;
+    }
 
     /// Opens any link to a device (which may leave a file in
     /// @p directory, the output directory). Called once, after all input

@@ -1,0 +1,164 @@
+#include <deal.II/base/utilities.h>
+
+#include <tissuefem/base/input_error.h>
+#include <tissuefem/tool/contact_tool.h>
+
+#include <iomanip>
+#include <sstream>
+
+namespace tissuefem::tool
+{
+  template <int dim>
+  void
+  ContactTool<dim>::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Contact tool");
+    prm.declare_entry("Obstacle",
+                      "",
+                      Patterns::Anything(),
+                      "The 'Name' of the obstacle (a 'Contact/Obstacle k') "
+                      "that is the instrument in the user's hand: the force "
+                      "of the tissue on it goes to tool_force.csv and to a "
+                      "haptic device; with a 'Live port' it follows the "
+                      "live client (its own 'Motion' must then be 0). Empty: "
+                      "no contact tool.");
+    HapticParameters::declare_parameters(prm);
+    prm.leave_subsection();
+  }
+
+
+  template <int dim>
+  std::unique_ptr<Interface<dim>>
+  ContactTool<dim>::create(ParameterHandler &prm, const Triangulation<dim> &)
+  {
+    prm.enter_subsection("Contact tool");
+    const std::string obstacle = Utilities::trim(prm.get("Obstacle"));
+    HapticParameters  haptic;
+    haptic.parse_parameters(prm, "Contact tool", !obstacle.empty());
+    prm.leave_subsection();
+    if (obstacle.empty())
+      return nullptr;
+    return std::make_unique<ContactTool<dim>>(obstacle, haptic);
+  }
+
+
+  template <int dim>
+  ContactTool<dim>::ContactTool(const std::string      &obstacle,
+                                const HapticParameters &parameters)
+      : obstacle_name(obstacle)
+      , haptic(parameters, [this](const double t) { return displacement(t); })
+  {
+  }
+
+
+  template <int dim>
+  void
+  ContactTool<dim>::attach(contact::PenaltyContact<dim> *c)
+  {
+    require(c != nullptr,
+            "Contact tool/Obstacle",
+            "names '" + obstacle_name
+              + "', but the scene has no obstacle ('Contact/Obstacle k/"
+                "Shape' is 'none' in every slot)");
+    auto       &obstacles = c->obstacles();
+    std::string names;
+    for (index = 0; index < obstacles.size(); ++index)
+      if (obstacles[index].name == obstacle_name)
+        break;
+      else
+        names += (names.empty() ? "'" : ", '") + obstacles[index].name + "'";
+    require(index < obstacles.size(),
+            "Contact tool/Obstacle",
+            "names '" + obstacle_name + "', which is no obstacle of the scene "
+              + "(they are " + names + ")");
+    contact = c;
+    if (haptic.live())
+      {
+        require(!obstacles[index].has_own_motion(),
+                obstacles[index].slot + "/Motion",
+                "must be 0 without a 'Motion file': the obstacle follows the "
+                "live client of 'Contact tool/Live port'");
+        // A live tool is where its parameters put it until the first
+        // position arrives, then moves by the positions minus the first.
+        const TrajectoryTable<dim> *positions = &table;
+        obstacles[index].follow([positions](const double t) {
+          return positions->position(t) - positions->first();
+        });
+      }
+  }
+
+
+  template <int dim>
+  Tensor<1, dim>
+  ContactTool<dim>::displacement(const double time) const
+  {
+    const auto &obstacle = contact->obstacles()[index];
+    return obstacle.offset(time) - obstacle.offset(0.);
+  }
+
+
+  template <int dim>
+  void
+  ContactTool<dim>::connect(const std::string &directory)
+  {
+    haptic.connect(directory);
+  }
+
+
+  template <int dim>
+  bool
+  ContactTool<dim>::synchronize(const double time)
+  {
+    return haptic.synchronize(time, table);
+  }
+
+
+  template <int dim>
+  std::string
+  ContactTool<dim>::live_end() const
+  {
+    return haptic.live_end();
+  }
+
+
+  template <int dim>
+  Record<dim>
+  ContactTool<dim>::record(const time::State &state, solid::Solid<dim> &solid)
+  {
+    VectorType ghosted;
+    solid.get_discretization().initialize_vector(ghosted, true);
+    ghosted = state.u;
+    // Every process calls: the report sums over them.
+    const auto  reports = contact->report(ghosted, state.time);
+    Record<dim> result;
+    result.position = displacement(state.time);
+    result.force    = -reports[index].force;
+    result.engaged  = reports[index].area > 0;
+    result.haptic   = haptic.update(state.time, result.force, result.engaged);
+    ++steps;
+    if (result.engaged)
+      ++steps_touching;
+    return result;
+  }
+
+
+  template <int dim>
+  std::string
+  ContactTool<dim>::summary() const
+  {
+    std::ostringstream s;
+    s << "contact tool '" << obstacle_name << "': touched the tissue at "
+      << steps_touching << " of " << steps << " states; " << haptic.summary();
+    return s.str();
+  }
+
+  template class ContactTool<1>;
+  template class ContactTool<2>;
+  template class ContactTool<3>;
+
+  TISSUEFEM_REGISTER_TOOL(ContactTool,
+                          "contact",
+                          "the obstacle named by 'Contact tool/Obstacle' as an "
+                          "instrument: its force to tool_force.csv and a "
+                          "haptic device, its motion from a live client.")
+} // namespace tissuefem::tool
