@@ -7,13 +7,21 @@
 // t = 3 by backward Euler (dt = 0.02) as the unit test does. Prints, per
 // pressure, how many starts recovered (distance from the rest shape below
 // 1e-3 of the block's length), stayed tangled, or failed (Newton gave up
-// at the smallest step).
+// at the smallest step), and each start's outcome in order (r, t, f; the
+// first 18 are tests/unit/crushed_starts.h's for seeds 1 to 3, in another
+// order: the three collapses, then per seed the three near-collapses and
+// the two scrambles).
 //
-//   self_contact_window [SEEDS] [CELLS]     (defaults 6, simplex)
+//   self_contact_window [SEEDS] [CELLS] [TANGENT] [RATIOS]
+//
+// defaults 6, simplex, false (the 'Self contact tangent'), and the
+// pressures over the shear modulus 0,0.25,0.5,0.8,1,1.3,2,3,5.
 //
 // Build: make self_contact_window (not part of 'make all').
 
 #include "../tests/unit/crushed_starts.h"
+
+#include <tissuefem/base/parameter_tools.h>
 
 #include <cstdlib>
 
@@ -65,18 +73,23 @@ int
 main(int argc, char **argv)
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const unsigned int seeds = argc > 1 ? std::atoi(argv[1]) : 6;
-  const std::string  cells = argc > 2 ? argv[2] : "simplex";
+  const unsigned int  seeds   = argc > 1 ? std::atoi(argv[1]) : 6;
+  const std::string   cells   = argc > 2 ? argv[2] : "simplex";
+  const std::string   tangent = argc > 3 ? argv[3] : "true";
+  std::vector<double> ratios  = {0., 0.25, 0.5, 0.8, 1., 1.3, 2., 3., 5.};
+  if (argc > 4)
+    ratios = tissuefem::parse_numbers(argv[4], "ratios");
   // E = 1000 Pa, nu = 0.3 (crushed_starts.h): shear modulus 384.6 Pa.
   const double shear = 1000 / (2 * 1.3);
   const auto   all   = starts(seeds);
-  std::cout << cells << ", " << all.size()
+  std::cout << cells << ", tangent " << tangent << ", " << all.size()
             << " starts; pressure over the shear modulus: recovered / "
                "tangled / failed\n";
-  for (const double ratio : {0., 0.25, 0.5, 0.8, 1., 1.3, 2., 3., 5.})
+  for (const double ratio : ratios)
     {
       unsigned int recovered = 0, tangled = 0, failed = 0;
-      std::string  names;
+      // Per start in order: r(ecovered), t(angled), f(ailed).
+      std::string outcomes;
       for (const auto &[name, start] : all)
         {
           std::ostringstream muted;
@@ -84,22 +97,21 @@ main(int argc, char **argv)
           double             distance = -1;
           try
             {
-              distance = recover(cells, start, ratio * shear);
+              distance = recover(cells, start, ratio * shear, tangent);
             }
           catch (const std::exception &)
             {
             }
           std::cout.rdbuf(screen);
-          if (distance < 0)
-            ++failed;
-          else if (distance < 1e-3)
-            ++recovered;
-          else
-            ++tangled;
+          const char outcome = distance < 0 ? 'f' : distance < 1e-3 ? 'r' : 't';
+          outcomes += outcome;
+          recovered += outcome == 'r';
+          tangled += outcome == 't';
+          failed += outcome == 'f';
         }
       std::cout << "  p_c = " << ratio << " mu (" << ratio * shear
                 << " Pa): " << recovered << " / " << tangled << " / " << failed
-                << std::endl;
+                << "  " << outcomes << std::endl;
     }
   return 0;
 }

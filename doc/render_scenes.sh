@@ -73,6 +73,9 @@ scene box_3d_drag ''
 # grasped corner and would leave the rest of the block one colour
 scene jeffrey_block '--step 500 --field displacement'
 scene inversion_recovery '--step 5'  # t = 0.012, still partly inverted
+# t = 0.25 s, the probe 8 mm deep; displacement, spindle upright: the dent
+# at the right and the bow away from it
+scene muscle_palpation '--step 25 --field displacement --up z'
 scene liver_incompressible '--view xy'
 scene jeffrey_table_e1 '--step 1' --set 'Output/VTU/Interval=1'
 scene jeffrey_timing '' --set 'Output/VTU/Interval=1'

@@ -40,9 +40,11 @@ namespace tissuefem::contact
   template <int dim>
   SelfContact<dim>::SelfContact(
     const solid::Discretization<dim> &discretization,
-    const double                      pressure)
+    const double                      pressure,
+    const bool                        tangent)
       : discretization(discretization)
       , pressure(pressure)
+      , tangent(tangent)
   {
     // Facets name dofs of the current mesh: a new mesh waits for the next
     // step's start.
@@ -83,6 +85,9 @@ namespace tissuefem::contact
         // the solid angles: they push nothing, and cost nothing.
         if (std::abs(facet.weight) < 1e-9)
           return;
+        determinant(facet, u, facet.start_gradient, nullptr);
+        for (double &g : facet.start_gradient)
+          g *= dim * pressure * facet.weight / factorial(dim);
         facets.push_back(facet);
       });
   }
@@ -169,6 +174,17 @@ namespace tissuefem::contact
     std::vector<types::global_dof_index> dofs(n);
     for (const Facet &facet : facets)
       {
+        if (!tangent)
+          {
+            // The dead load of the step's start.
+            for (unsigned int i = 0; i < n; ++i)
+              {
+                r(i)    = facet.start_gradient[i];
+                dofs[i] = facet.dofs[i];
+              }
+            rows.distribute_local_to_global(r, dofs, residual);
+            continue;
+          }
         const double s = dim * pressure * facet.weight / factorial(dim);
         K              = 0;
         determinant(facet, u, gradient, jacobian ? &K : nullptr);
@@ -196,8 +212,12 @@ namespace tissuefem::contact
     std::array<double, dim * dim> gradient{};
     double                        sum = 0;
     for (const Facet &facet : facets)
-      sum += dim * pressure * facet.weight / factorial(dim)
-             * determinant(facet, u, gradient, nullptr);
+      if (tangent)
+        sum += dim * pressure * facet.weight / factorial(dim)
+               * determinant(facet, u, gradient, nullptr);
+      else
+        for (unsigned int i = 0; i < dim * dim; ++i)
+          sum += facet.start_gradient[i] * u[facet.dofs[i]];
     return Utilities::MPI::sum(sum, parallel_tools::communicator());
   }
 

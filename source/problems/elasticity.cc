@@ -137,8 +137,8 @@ namespace tissuefem::problems
     if (adaptation->enabled())
       return "a scene with mesh refinement cannot be checkpointed";
     if (scene->obstacle_contact && scene->obstacle_contact->keeps_history())
-      return "contact by the augmented Lagrangian keeps multipliers (and "
-             "friction's stick points) that a checkpoint does not hold";
+      return "contact by the augmented Lagrangian or with friction keeps "
+             "multipliers and stick points that a checkpoint does not hold";
     return {};
   }
 

@@ -241,6 +241,17 @@ namespace tissuefem::time
       check_mesh();
       mass = &context->solid.lumped_mass();
       set_up_active_region();
+      // Smaller cells have higher frequencies: the step that was stable
+      // may no longer be (estimated at the last state, which is on the new
+      // mesh now).
+      critical_step = estimate_critical_step(previous);
+      if (context->time.time_step > critical_step && !allow_unstable)
+        throw SolverError(
+          "the mesh change lowered the explicit scheme's estimated critical "
+          "step to "
+          + std::to_string(critical_step) + ", below 'Time integration/Time "
+          + "step' " + std::to_string(context->time.time_step)
+          + " (refine less, or take a shorter step)");
     }
 
     std::string

@@ -109,7 +109,8 @@ namespace tissuefem_tests
   inline double
   recover(const std::string &cells,
           const std::string &start,
-          const double       contact_pressure)
+          const double       contact_pressure,
+          const std::string &tangent = "false")
   {
     ParameterHandler prm;
     tissuefem::declare_all_parameters(prm);
@@ -131,6 +132,8 @@ namespace tissuefem_tests
                                 + start + R"(
         set Self contact pressure = )"
                                 + std::to_string(contact_pressure) + R"(
+        set Self contact tangent = )"
+                                + tangent + R"(
       end
       subsection Time integration
         set Integrator = backward Euler

@@ -49,6 +49,8 @@ namespace tissuefem::boundary
     std::string self_contact          = "automatic";
     double      self_contact_pressure = 0;
     std::string self_contact_note;
+    /// 'Self contact tangent'.
+    bool self_contact_tangent = false;
     /// Why 'Load factor = automatic' became what it is (empty if the file
     /// gave a factor); see resolve_load_factor().
     std::string load_factor_note;

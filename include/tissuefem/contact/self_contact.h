@@ -60,9 +60,12 @@ namespace tissuefem::contact
   class SelfContact : public forces::Interface<dim>
   {
   public:
-    /// With the pressure p_c (stress units, > 0).
+    /// With the pressure p_c (stress units, > 0); without @p tangent each
+    /// facet's force at the step's start is held over the step as a dead
+    /// load (energy -f . u, no Jacobian).
     SelfContact(const solid::Discretization<dim> &discretization,
-                const double                      pressure);
+                const double                      pressure,
+                const bool                        tangent = true);
 
     void
     add(const VectorType                &u,
@@ -90,6 +93,8 @@ namespace tissuefem::contact
       std::array<Point<dim>, dim>                    X;
       double                                         weight;
       Point<dim>                                     centre;
+      /// dE_f/du at the step's start (the dead load's minus force).
+      std::array<double, dim * dim> start_gradient;
     };
 
     /// For @p facet at the ghosted @p u: the determinant of its vertices
@@ -103,6 +108,7 @@ namespace tissuefem::contact
 
     const solid::Discretization<dim>  &discretization;
     double                             pressure;
+    bool                               tangent;
     std::vector<Facet>                 facets;
     boost::signals2::scoped_connection mesh_changed;
   };
