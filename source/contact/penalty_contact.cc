@@ -16,6 +16,36 @@
 
 namespace tissuefem::contact
 {
+  namespace
+  {
+    /// Whether an update whose largest change on this process is @p worst
+    /// (length units) settled the step (within @p tolerance), needs it
+    /// solved again (fewer than @p max_updates so far), or gave up (with
+    /// @p message: @p what, the change, the limits).
+    forces::Augmentation
+    verdict(double             worst,
+            const double       tolerance,
+            const unsigned int update,
+            const unsigned int max_updates,
+            const std::string &what,
+            std::string       &message)
+    {
+      worst = mpi_max_keeping_nan(worst, parallel_tools::communicator());
+      if (worst <= tolerance)
+        return forces::Augmentation::satisfied;
+      if (update + 1 < max_updates && std::isfinite(worst))
+        return forces::Augmentation::again;
+      std::ostringstream why;
+      why << what << " " << worst << " (length units; 'Contact/Gap tolerance' "
+          << tolerance << ") after " << update + 1
+          << " updates ('Contact/Maximum multiplier updates'; a larger "
+             "'Contact/Penalty factor' converges in fewer)";
+      message = why.str();
+      return forces::Augmentation::failed;
+    }
+  } // namespace
+
+
   template <int dim>
   void
   PenaltyContact<dim>::declare_parameters(ParameterHandler &prm)
@@ -515,20 +545,13 @@ namespace tissuefem::contact
     };
     for_each_face(u, time, face);
     states.swap(updated);
-    worst = mpi_max_keeping_nan(worst, parallel_tools::communicator());
-    if (worst <= tolerance)
-      return forces::Augmentation::satisfied;
-    if (update + 1 < max_updates && std::isfinite(worst))
-      return forces::Augmentation::again;
-    std::ostringstream why;
-    why << "the augmented Lagrangian left a gap (or a stuck point's slip) "
-           "of "
-        << worst << " (length units; 'Contact/Gap tolerance' " << tolerance
-        << ") after " << update + 1
-        << " multiplier updates ('Contact/Maximum multiplier updates'; a "
-           "larger 'Contact/Penalty factor' converges in fewer)";
-    message = why.str();
-    return forces::Augmentation::failed;
+    return verdict(worst,
+                   tolerance,
+                   update,
+                   max_updates,
+                   "the augmented Lagrangian left a gap (or a stuck point's "
+                   "slip) of",
+                   message);
   }
 
 
@@ -567,19 +590,13 @@ namespace tissuefem::contact
     };
     for_each_face(u, time, face);
     states.swap(updated);
-    worst = mpi_max_keeping_nan(worst, parallel_tools::communicator());
-    if (worst <= tolerance)
-      return forces::Augmentation::satisfied;
-    if (update + 1 < max_updates && std::isfinite(worst))
-      return forces::Augmentation::again;
-    std::ostringstream why;
-    why << "the friction bounds (mu times the contact pressure) still moved "
-           "by "
-        << worst << " over the tangential penalty (length units; 'Contact/Gap "
-        << "tolerance' " << tolerance << ") after " << update + 1
-        << " updates ('Contact/Maximum multiplier updates')";
-    message = why.str();
-    return forces::Augmentation::failed;
+    return verdict(worst,
+                   tolerance,
+                   update,
+                   max_updates,
+                   "the friction bounds (mu times the contact pressure) "
+                   "still moved, over the tangential penalty, by",
+                   message);
   }
 
 
