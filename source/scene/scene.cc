@@ -38,6 +38,16 @@ namespace tissuefem
 
   namespace
   {
+    /// Whether @p integrator begins each step (Operators::begin_step(),
+    /// where self contact takes its weights).
+    bool
+    begins_steps(const std::string &integrator)
+    {
+      return integrator == "backward Euler" || integrator == "quasistatic"
+             || integrator == "linearly implicit Euler";
+    }
+
+
     /**
      * Only these integrators begin each step (Operators::begin_step(),
      * where self contact takes its weights), pass the time of each force
@@ -67,14 +77,13 @@ namespace tissuefem
       prm.leave_subsection();
       prm.leave_subsection();
       const bool takes_penalty
-        = implicit_one_step || integrator == "linearly implicit Euler"
+        = begins_steps(integrator)
           || (integrator == "damped central difference" && !active_region);
       const std::string needs
         = "needs Time integration/Integrator = backward Euler or "
           "quasistatic (not '"
           + integrator + "')";
-      require(self_contact_pressure == 0 || implicit_one_step
-                || integrator == "linearly implicit Euler",
+      require(self_contact_pressure == 0 || begins_steps(integrator),
               "Boundary conditions/Self contact pressure",
               "needs Time integration/Integrator = backward Euler, "
               "quasistatic or linearly implicit Euler (not '"
@@ -111,21 +120,18 @@ namespace tissuefem
           shear = std::max(shear, materials.constants[m].mu);
       time::TimeParameters time_parameters;
       time_parameters.parse_parameters(prm);
-      const std::string &integrator   = time_parameters.integrator;
-      const bool         begins_steps = integrator == "backward Euler"
-                                || integrator == "quasistatic"
-                                || integrator == "linearly implicit Euler";
-      const bool  simplices = !mesh.all_reference_cells_are_hyper_cube();
-      std::string why
+      const std::string &integrator = time_parameters.integrator;
+      const bool         simplices = !mesh.all_reference_cells_are_hyper_cube();
+      std::string        why
         = shear == 0   ? "no invertible neo-Hookean material"
           : !simplices ? "the invertible model on quadrilaterals or hexahedra, "
                          "which recover by elasticity alone"
-          : !begins_steps ? "integrator '" + integrator + "' does not take it"
-                          : "twice the shear modulus of the invertible "
-                            "neo-Hookean model on triangles or tetrahedra";
-      boundary.resolve_self_contact(shear,
-                                    shear > 0 && simplices && begins_steps,
-                                    why);
+          : !begins_steps(integrator)
+            ? "integrator '" + integrator + "' does not take it"
+            : "twice the shear modulus of the invertible "
+              "neo-Hookean model on triangles or tetrahedra";
+      boundary.resolve_self_contact(
+        shear, shear > 0 && simplices && begins_steps(integrator), why);
     }
   } // namespace
 
