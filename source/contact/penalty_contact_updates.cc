@@ -89,14 +89,24 @@ namespace tissuefem::contact
         }
     };
     for_each_face(u, time, face);
-    states.swap(updated);
-    return verdict(worst,
-                   tolerance,
-                   update,
-                   max_updates,
-                   "the augmented Lagrangian left a gap (or a stuck point's "
-                   "slip) of",
-                   message);
+    const forces::Augmentation outcome
+      = verdict(worst,
+                tolerance,
+                update,
+                max_updates,
+                "the augmented Lagrangian left a gap (or a stuck point's "
+                "slip) of",
+                message);
+    // Settled without friction: keep the multipliers the solution was
+    // solved with, so that report() gives the force of that equilibrium.
+    // Updated, they would add k g once more: after a mesh change
+    // (multipliers 0) a first solve already within the tolerance reported
+    // twice its force (the Hertz scene refined adaptively). With friction
+    // the update stays: accept_step() moves a sliding point's stick point
+    // to it, and its traction is then carried by tau = t alone.
+    if (outcome != forces::Augmentation::satisfied || has_friction())
+      states.swap(updated);
+    return outcome;
   }
 
 

@@ -7,6 +7,8 @@
 #include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/geometry/source.h>
 
+#include <cmath>
+
 namespace tissuefem::geometry
 {
   template <int dim>
@@ -68,13 +70,66 @@ namespace tissuefem::geometry
             + " has no positive volume (list the corners in deal.II's vertex "
               "order: x fastest, then y, then z)");
     }
+
+    /// Moves the vertices toward 'Graded toward' (c): each point's
+    /// normalized offset s (s_d = (x_d - c_d) over the distance from c_d
+    /// to the box's face on that side) is scaled by G(rho) / rho, rho =
+    /// max |s_d|, G(rho) = (rho + b rho^3) / (1 + b). G(1) = 1 keeps the
+    /// faces in place, planes through c stay planes (the symmetry faces of
+    /// a quarter model), and rho G'(rho) / G(rho) <= 3 bounds each cell's
+    /// stretch between the radial and tangential directions.
+    template <int dim>
+    void
+    grade(const GeometryParameters &parameters,
+          const Point<dim>         &lower,
+          const Point<dim>         &upper,
+          Triangulation<dim>       &triangulation)
+    {
+      if (parameters.grading == 1)
+        return;
+      const Point<dim> c
+        = Utilities::trim(parameters.graded_toward).empty()
+            ? lower
+            : parse_leading_point<dim>(parameters.graded_toward,
+                                       "Geometry/Graded toward");
+      for (unsigned int d = 0; d < dim; ++d)
+        require(c[d] >= lower[d] && c[d] <= upper[d],
+                "Geometry/Graded toward",
+                "must lie in the box");
+      const double b = parameters.grading - 1;
+      GridTools::transform(
+        [&](const Point<dim> &x) {
+          Tensor<1, dim> s;
+          double         rho = 0;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              const double side
+                = x[d] >= c[d] ? upper[d] - c[d] : c[d] - lower[d];
+              s[d] = side > 0 ? (x[d] - c[d]) / side : 0;
+              rho  = std::max(rho, std::abs(s[d]));
+            }
+          if (rho == 0)
+            return x;
+          const double scale = (1 + b * rho * rho) / (1 + b);
+          Point<dim>   result;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              const double side
+                = x[d] >= c[d] ? upper[d] - c[d] : c[d] - lower[d];
+              result[d] = c[d] + scale * s[d] * side;
+            }
+          return result;
+        },
+        triangulation);
+    }
   } // namespace
 
 
   /**
    * 'Lower corner' to 'Upper corner' in 'Subdivisions' cells per direction,
-   * of 'Cell type'; boundary ids 0/1 on the faces x = lower/upper, 2/3 on
-   * y, 4/5 on z, material id 0; mapped onto 'Corners' if given.
+   * of 'Cell type', graded toward a point by 'Grading'; boundary ids 0/1 on the
+   * faces x = lower/upper, 2/3 on y, 4/5 on z, material id 0; mapped onto
+   * 'Corners' if given.
    */
   template <int dim>
   class Box : public Source<dim>
@@ -126,6 +181,7 @@ namespace tissuefem::geometry
           for (const auto &cell : triangulation.active_cell_iterators())
             cell->set_material_id(0);
         }
+      grade(parameters, lower, upper, triangulation);
       if (!Utilities::trim(parameters.corners).empty())
         map_onto_corners(parameters, lower, upper, triangulation);
     }

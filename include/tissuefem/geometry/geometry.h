@@ -29,6 +29,8 @@ namespace tissuefem::geometry
     std::string  source;    ///< a registered Source (geometry/source.h)
     std::string  cell_type; ///< "hypercube" or "simplex"
     std::string  lower_corner, upper_corner, subdivisions, corners;
+    double       grading;       ///< 'Grading': finer at graded_toward
+    std::string  graded_toward; ///< 'Graded toward': a point, or empty
     std::string  mesh_file;
     double       scale;
     unsigned int global_refinements;

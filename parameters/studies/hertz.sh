@@ -1,0 +1,123 @@
+#!/bin/bash
+# Hertz indentation (parameters/hertz_indentation.prm): the error of the
+# contact force and of the contact radius against Hertz's closed form, over
+# meshes, elements and contact methods, against the wall time of the run.
+#
+#   closed form   F = 4/3 E / (1 - nu^2) R^(1/2) d^(3/2) = 1.465e-3 N and
+#                 a = (R d)^(1/2) = 1 mm at full depth (the scene models a
+#                 quarter: its force and area are multiplied by 4)
+#   measured      F_h: the probe's force (contact.csv, z component, times
+#                 4); a_h = (4 A / pi)^(1/2), A the reference area whose
+#                 face quadrature points carry a pressure (contact.csv)
+#   meshes        the scene's graded box with 'Subdivisions' n = 8 to 32
+#                 per direction at the same 'Grading' (25): every cell
+#                 shrinks as 1 / n, the smallest (at the contact) from 1 a
+#                 to a / 4; hexahedra (Q1) and the same boxes split into
+#                 tetrahedra (P1); and Q1 refined adaptively (Kelly) from
+#                 n = 8, two load steps then five re-solves at full depth,
+#                 each after refining the 15 % of cells with the largest
+#                 indicator
+#   methods       the penalty (its default factor) and the augmented
+#                 Lagrangian (gaps within 1e-7 m, 1e-3 d)
+#   wall time     the whole run, start-up and output included (s), with
+#                 the linear solver 'cg amg' for every run
+#
+# Writes DIR/hertz.csv and, with gnuplot, DIR/hertz_force_error.png (force
+# error against wall time, log-log) and DIR/hertz_radius_error.png. What it
+# showed on the development machine is in doc/studies.md.
+#
+# Usage (from the repository top, after building):
+#   bash parameters/studies/hertz.sh [path/to/tissuefem] [DIR]
+#   SIZES="8 12" METHODS=penalty bash parameters/studies/hertz.sh  (a quick look)
+set -euo pipefail
+exe=$(realpath "${1:-build/tissuefem}")
+out=$(realpath -m "${2:-hertz-study}")
+prm=$(realpath "$(dirname "$0")/../hertz_indentation.prm")
+mkdir -p "$out/runs"
+read -r -a sizes <<< "${SIZES:-8 12 16 24 32}"
+read -r -a methods <<< "${METHODS:-penalty augmented_Lagrangian}"
+csv=$out/hertz.csv
+echo "element,mesh,method,cells,unknowns,force (N),force error,radius (m),radius error,penetration over d,wall (s)" > "$csv"
+
+# run ELEMENT MESH METHOD ARGS...: one run, one row of the CSV.
+run() {
+  local element=$1 mesh=$2 method=$3
+  shift 3
+  local dir=$out/runs/$element-$mesh-$method
+  local args=(--set "Output/Directory=$dir" --set "Linear solver/Type=cg amg"
+              --set "Contact/Method=${method//_/ }" --set "Contact/Gap tolerance=1e-7")
+  [ "$element" = P1 ] && args+=(--set "Geometry/Cell type=simplex")
+  local start end
+  start=$(date +%s.%N)
+  if ! "$exe" "$prm" "${args[@]}" "$@" > "$dir.log" 2>&1; then
+    echo "$element,$mesh,$method,,,,,,,,failed (see $dir.log)" | tee -a "$csv"
+    return
+  fi
+  end=$(date +%s.%N)
+  local cells unknowns
+  read -r cells unknowns <<< "$(grep -o '[0-9]* cells, [0-9]* unknowns' "$dir.log" | tail -1 | tr -d ',' | awk '{ print $1, $3 }')"
+  # The last row of contact.csv: time, obstacle, FX, FY, FZ, penetration,
+  # area, min and max pressure; the closed form from the scene's numbers.
+  tail -n 1 "$dir/contact.csv" | awk -F, -v e="$element" -v m="$mesh" -v me="$method" \
+    -v c="$cells" -v n="$unknowns" -v s="$start" -v t="$end" '{
+      E = 1e4; nu = 0.3; R = 0.01; d = 1e-4
+      F = 4 / 3 * E / (1 - nu * nu) * sqrt(R) * d ^ 1.5; a = sqrt(R * d)
+      Fh = -4 * $5; ah = sqrt(4 * $7 / 3.141592653589793)
+      printf "%s,%s,%s,%s,%s,%.5g,%.4f,%.5g,%.4f,%.2g,%.1f\n", e, m, me, c, n, Fh,
+        Fh / F - 1, ah, ah / a - 1, $6 / d, t - s }' | tee -a "$csv"
+}
+
+for element in Q1 P1; do
+  for method in "${methods[@]}"; do
+    for n in "${sizes[@]}"; do
+      run "$element" "n$n" "$method" --set "Geometry/Subdivisions=$n, $n, $n"
+    done
+  done
+done
+for method in "${methods[@]}"; do
+  run Q1 adaptive "$method" --set "Geometry/Subdivisions=8, 8, 8" \
+    --set "Time integration/Time step=0.5" --set "Time integration/End time=3.5" \
+    --set "Contact/Obstacle 1/Motion=0; 0; -1e-4*min(t, 1)" \
+    --set "Mesh refinement/Indicator=Kelly" --set "Mesh refinement/Refine fraction=0.15" \
+    --set "Mesh refinement/Coarsen fraction=0" --set "Mesh refinement/Maximum levels=5"
+done
+
+if ! command -v gnuplot > /dev/null 2>&1; then
+  echo "hertz.sh: gnuplot not found, no charts (the table is $csv)" >&2
+  exit 0
+fi
+# One data file per element and method: wall time, |force error|, |radius
+# error| (in %), and the mesh label.
+plots_f=""; plots_a=""
+for series in "Q1 n penalty" "Q1 n augmented_Lagrangian" "P1 n penalty" "P1 n augmented_Lagrangian" \
+              "Q1 adaptive penalty" "Q1 adaptive augmented_Lagrangian"; do
+  read -r element mesh method <<< "$series"
+  file=$out/runs/$element-$mesh-$method.dat
+  awk -F, -v e="$element" -v m="$mesh" -v me="$method" \
+    '$1 == e && index($2, m) == 1 && $3 == me && $11 != "" && $11 !~ /failed/ {
+       f = $7 < 0 ? -$7 : $7; r = $9 < 0 ? -$9 : $9; print $11, 100 * f, 100 * r, $2 }' "$csv" > "$file"
+  [ -s "$file" ] || continue
+  title="$element ${mesh/n/graded boxes}, ${method//_/ }"
+  plots_f="$plots_f${plots_f:+, }'$file' using 1:2 with linespoints lw 2 ps 1.3 title '$title'"
+  plots_a="$plots_a${plots_a:+, }'$file' using 1:3 with linespoints lw 2 ps 1.3 title '$title'"
+done
+gnuplot <<GNUPLOT
+set terminal pngcairo size 900,650 font ',11'
+set logscale xy
+set grid xtics ytics mxtics mytics lc rgb '#dddddd'
+set key outside below maxrows 3
+set xlabel 'wall time of the run (s, 2 cores)'
+set output '$out/hertz_force_error.png'
+set title 'Hertz indentation: force error |F_h / F - 1| against wall time'
+set ylabel 'force error (%)'
+set arrow 1 from graph 0, first 2 to graph 1, first 2 nohead dt 2 lc rgb '#555555'
+set label 1 '2 % (target)' at graph 0.98, first 2 right offset 0, 0.7
+plot $plots_f
+set output '$out/hertz_radius_error.png'
+set title 'Hertz indentation: contact radius error |a_h / a - 1| against wall time'
+set ylabel 'contact radius error (%)'
+set arrow 1 from graph 0, first 5 to graph 1, first 5 nohead dt 2 lc rgb '#555555'
+set label 1 '5 % (target)' at graph 0.98, first 5 right offset 0, 0.7
+plot $plots_a
+GNUPLOT
+echo "wrote $csv, $out/hertz_force_error.png, $out/hertz_radius_error.png"

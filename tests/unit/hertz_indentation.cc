@@ -1,0 +1,152 @@
+// Hertz indentation (parameters/hertz_indentation.prm, run as the program
+// runs it): a rigid sphere (R = 10 mm) pressed d = 0.1 mm into a thick
+// linear-elastic block (E = 10 kPa, nu = 0.3), frictionless, one quarter by
+// symmetry, against Hertz's closed form for a half-space:
+//   F = 4/3 E / (1 - nu^2) R^(1/2) d^(3/2),  a = (R d)^(1/2)
+// (Johnson, Contact Mechanics, section 4.2). The contact radius measured is
+// (4 A / pi)^(1/2), A the reference area whose face quadrature points carry
+// a pressure.
+//
+// At the sizes a test affords, the discretization error is a few percent
+// to tens of percent, and the tolerances below match it (measured
+// 2026-11-27; parameters/studies/hertz.sh follows it to finer meshes,
+// doc/studies.md):
+// - Q1 refined adaptively from the scene's graded box with 8 cells per
+//   direction (Kelly indicator, 15 % of the cells per re-solve, two load
+//   steps and three re-solves at full depth, 3 levels; force +3.4 %,
+//   radius -6 %): force within 5 %, radius within 10 %, and the force
+//   error at most a fifth of the unrefined mesh's (+33 %);
+// - P1 on the graded box with 16 cells per direction (20,480 tetrahedra;
+//   force +29 %, radius -44 %): force within 35 %, radius within 50 %,
+//   and the force error at most a third of that with 8 cells per
+//   direction (+124 %).
+// All with the augmented Lagrangian (gaps within 1e-7 m, 1e-3 d). Also run
+// on two processes.
+
+#include <deal.II/base/mpi.h>
+
+#include <tissuefem/base/application.h>
+
+#include "../tests.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace dealii;
+using namespace tissuefem_tests;
+
+namespace
+{
+  struct Measured
+  {
+    bool   ran         = false;
+    double force_error = 0, radius_error = 0;
+  };
+
+  /// Runs the shipped scene with @p overrides (screen output muted) and
+  /// compares its last contact.csv row with Hertz's closed form.
+  Measured
+  run(const std::string              &name,
+      const double                    end_time,
+      const std::vector<std::string> &overrides)
+  {
+    const std::string        directory = "results-" + name;
+    std::vector<std::string> arguments
+      = {"tissuefem",
+         std::string(SOURCE_DIR) + "/../../parameters/hertz_indentation.prm",
+         "--set",
+         "Output/Directory=" + directory,
+         "--set",
+         "Contact/Gap tolerance=1e-7"};
+    for (const auto &o : overrides)
+      {
+        arguments.push_back("--set");
+        arguments.push_back(o);
+      }
+    std::vector<char *> argv;
+    for (auto &a : arguments)
+      argv.push_back(a.data());
+    std::ostringstream muted;
+    std::streambuf    *screen = std::cout.rdbuf(muted.rdbuf());
+    const int status = tissuefem::run_command_line(argv.size(), argv.data());
+    std::cout.rdbuf(screen);
+    MPI_Barrier(MPI_COMM_WORLD);
+
+    Measured      result;
+    std::ifstream in(directory + "/contact.csv");
+    std::string   line, last;
+    while (std::getline(in, line))
+      if (!line.empty())
+        last = line;
+    // time, obstacle, FX, FY, FZ, penetration, area, min/max pressure
+    std::vector<std::string> fields;
+    std::istringstream       row(last);
+    for (std::string f; std::getline(row, f, ',');)
+      fields.push_back(f);
+    if (status != 0 || fields.size() != 9
+        || std::abs(std::stod(fields[0]) - end_time) > 1e-9)
+      return result;
+    const double E = 1e4, nu = 0.3, R = 0.01, d = 1e-4;
+    const double F
+      = 4. / 3 * E / (1 - nu * nu) * std::sqrt(R) * std::pow(d, 1.5);
+    const double a = std::sqrt(R * d);
+    // The scene is a quarter: four times its force and area.
+    const double F_h    = -4 * std::stod(fields[4]);
+    const double a_h    = std::sqrt(4 * std::stod(fields[6]) / M_PI);
+    result.ran          = F_h > 0;
+    result.force_error  = F_h / F - 1;
+    result.radius_error = a_h / a - 1;
+    return result;
+  }
+} // namespace
+
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  const OneWriter                  one_writer;
+
+  const std::string coarse_q1 = "Geometry/Subdivisions=8, 8, 8";
+  const Measured    unrefined = run("q1-unrefined", 1, {coarse_q1});
+  const Measured    adaptive
+    = run("q1-adaptive",
+          2.5,
+          {coarse_q1,
+           "Time integration/Time step=0.5",
+           "Time integration/End time=2.5",
+           "Contact/Obstacle 1/Motion=0; 0; -1e-4*min(t, 1)",
+           "Mesh refinement/Indicator=Kelly",
+           "Mesh refinement/Refine fraction=0.15",
+           "Mesh refinement/Coarsen fraction=0",
+           "Mesh refinement/Maximum levels=3"});
+  check(unrefined.ran && adaptive.ran,
+        "Q1: both runs reach full depth with the force into the block",
+        "");
+  check_small(adaptive.force_error, 0.05, "Q1 adaptive: force error");
+  check_small(adaptive.radius_error, 0.1, "Q1 adaptive: contact radius error");
+  check(std::abs(adaptive.force_error) <= std::abs(unrefined.force_error) / 5,
+        "Q1: adaptive refinement cuts the force error at least fivefold",
+        "from " + std::to_string(unrefined.force_error) + " to "
+          + std::to_string(adaptive.force_error));
+
+  const std::string simplex = "Geometry/Cell type=simplex";
+  const Measured    p1_coarse
+    = run("p1-coarse", 1, {"Geometry/Subdivisions=8, 8, 8", simplex});
+  const Measured p1
+    = run("p1", 1, {"Geometry/Subdivisions=16, 16, 16", simplex});
+  check(p1_coarse.ran && p1.ran,
+        "P1: both runs reach full depth with the force into the block",
+        "");
+  check_small(p1.force_error, 0.35, "P1: force error");
+  check_small(p1.radius_error, 0.5, "P1: contact radius error");
+  check(std::abs(p1.force_error) <= std::abs(p1_coarse.force_error) / 3,
+        "P1: halving every cell cuts the force error at least threefold",
+        "from " + std::to_string(p1_coarse.force_error) + " to "
+          + std::to_string(p1.force_error));
+  return exit_status();
+}
