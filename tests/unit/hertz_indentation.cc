@@ -102,6 +102,32 @@ namespace
     result.radius_error = a_h / a - 1;
     return result;
   }
+
+  /// The checks of one element: both runs reach full depth, the finer
+  /// one's force and radius within @p force and @p radius (relative), and
+  /// its force error at most 1 / @p factor of the coarser one's.
+  void
+  check_pair(const std::string &element,
+             const Measured    &coarse,
+             const Measured    &fine,
+             const double       force,
+             const double       radius,
+             const int          factor,
+             const std::string &refinement)
+  {
+    check(coarse.ran && fine.ran,
+          element
+            + ": both runs reach full depth with the force into the "
+              "block",
+          "");
+    check_small(fine.force_error, force, element + ": force error");
+    check_small(fine.radius_error, radius, element + ": contact radius error");
+    check(std::abs(fine.force_error) <= std::abs(coarse.force_error) / factor,
+          element + ": " + refinement + " cuts the force error at least "
+            + std::to_string(factor) + " times",
+          "from " + std::to_string(coarse.force_error) + " to "
+            + std::to_string(fine.force_error));
+  }
 } // namespace
 
 
@@ -124,29 +150,13 @@ main(int argc, char **argv)
            "Mesh refinement/Refine fraction=0.15",
            "Mesh refinement/Coarsen fraction=0",
            "Mesh refinement/Maximum levels=3"});
-  check(unrefined.ran && adaptive.ran,
-        "Q1: both runs reach full depth with the force into the block",
-        "");
-  check_small(adaptive.force_error, 0.04, "Q1 adaptive: force error");
-  check_small(adaptive.radius_error, 0.1, "Q1 adaptive: contact radius error");
-  check(std::abs(adaptive.force_error) <= std::abs(unrefined.force_error) / 5,
-        "Q1: adaptive refinement cuts the force error at least fivefold",
-        "from " + std::to_string(unrefined.force_error) + " to "
-          + std::to_string(adaptive.force_error));
+  check_pair("Q1", unrefined, adaptive, 0.04, 0.1, 5, "adaptive refinement");
 
   const std::string simplex = "Geometry/Cell type=simplex";
   const Measured    p1_coarse
     = run("p1-coarse", 1, {"Geometry/Subdivisions=8, 8, 8", simplex});
   const Measured p1
     = run("p1", 1, {"Geometry/Subdivisions=16, 16, 16", simplex});
-  check(p1_coarse.ran && p1.ran,
-        "P1: both runs reach full depth with the force into the block",
-        "");
-  check_small(p1.force_error, 0.4, "P1: force error");
-  check_small(p1.radius_error, 0.5, "P1: contact radius error");
-  check(std::abs(p1.force_error) <= std::abs(p1_coarse.force_error) / 3,
-        "P1: halving every cell cuts the force error at least threefold",
-        "from " + std::to_string(p1_coarse.force_error) + " to "
-          + std::to_string(p1.force_error));
+  check_pair("P1", p1_coarse, p1, 0.4, 0.5, 3, "halving every cell");
   return exit_status();
 }
