@@ -16,8 +16,6 @@
 
 namespace tissuefem::contact
 {
-
-
   template <int dim>
   void
   PenaltyContact<dim>::declare_parameters(ParameterHandler &prm)

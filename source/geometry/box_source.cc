@@ -99,25 +99,20 @@ namespace tissuefem::geometry
       const double b = parameters.grading - 1;
       GridTools::transform(
         [&](const Point<dim> &x) {
-          Tensor<1, dim> s;
+          Tensor<1, dim> s, side;
           double         rho = 0;
           for (unsigned int d = 0; d < dim; ++d)
             {
-              const double side
-                = x[d] >= c[d] ? upper[d] - c[d] : c[d] - lower[d];
-              s[d] = side > 0 ? (x[d] - c[d]) / side : 0;
-              rho  = std::max(rho, std::abs(s[d]));
+              side[d] = x[d] >= c[d] ? upper[d] - c[d] : c[d] - lower[d];
+              s[d]    = side[d] > 0 ? (x[d] - c[d]) / side[d] : 0;
+              rho     = std::max(rho, std::abs(s[d]));
             }
           if (rho == 0)
             return x;
           const double scale = (1 + b * rho * rho) / (1 + b);
           Point<dim>   result;
           for (unsigned int d = 0; d < dim; ++d)
-            {
-              const double side
-                = x[d] >= c[d] ? upper[d] - c[d] : c[d] - lower[d];
-              result[d] = c[d] + scale * s[d] * side;
-            }
+            result[d] = c[d] + scale * s[d] * side[d];
           return result;
         },
         triangulation);
