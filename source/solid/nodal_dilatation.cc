@@ -300,9 +300,21 @@ namespace tissuefem::solid
     const auto          &material = materials.material(cell.material_id);
     const Tensor<2, dim> F_bar = std::pow(theta / determinant(F), 1. / dim) * F;
     MeanDilatationPoint<dim> sum;
+    // Points with the same fibre (all of them, for isotropic models) share
+    // one evaluation: F is constant on the cell.
+    std::vector<bool> done(weights.size(), false);
     for (unsigned int q = 0; q < weights.size(); ++q)
       {
-        const Tensor<1, dim>    &a = fibres.at(cell.active_index, q);
+        if (done[q])
+          continue;
+        const Tensor<1, dim> &a      = fibres.at(cell.active_index, q);
+        double                weight = 0;
+        for (unsigned int r = q; r < weights.size(); ++r)
+          if (!done[r] && fibres.at(cell.active_index, r) == a)
+            {
+              weight += weights[r];
+              done[r] = true;
+            }
         MeanDilatationPoint<dim> point;
         if (jacobian)
           {
@@ -316,7 +328,7 @@ namespace tissuefem::solid
           }
         else
           mean_dilatation_stress(F, theta, material.stress(F_bar, a), point);
-        const double v = weights[q] * cell.volume;
+        const double v = weight * cell.volume;
         sum.phi_F += v * point.phi_F;
         sum.phi_theta += v * point.phi_theta;
         sum.phi_FF += v * point.phi_FF;

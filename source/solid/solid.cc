@@ -64,25 +64,10 @@ namespace tissuefem::solid
     signals.about_to_change();
     discretization.distribute(&boundary_conditions,
                               held ? &held->vertices : nullptr);
-    const auto                       &dof_handler = discretization.dof_handler;
-    TrilinosWrappers::SparsityPattern sparsity(discretization.locally_owned,
-                                               discretization.locally_owned,
-                                               discretization.locally_relevant,
-                                               parallel_tools::communicator());
-    DoFTools::make_sparsity_pattern(dof_handler,
-                                    sparsity,
-                                    discretization.constraints,
-                                    false,
-                                    Utilities::MPI::this_mpi_process(
-                                      parallel_tools::communicator()));
+    const auto &dof_handler = discretization.dof_handler;
     nodal.reset();
     if (materials.nodal_dilatation_formulation())
-      {
-        nodal = std::make_unique<NodalDilatation<dim>>(discretization);
-        nodal->add_sparsity(discretization.constraints, sparsity);
-      }
-    sparsity.compress();
-    jacobian_matrix.reinit(sparsity);
+      nodal = std::make_unique<NodalDilatation<dim>>(discretization);
     mass.reset();
     lumped.reset();
     groups.clear();
@@ -99,7 +84,7 @@ namespace tissuefem::solid
     fibre_field.build(discretization, materials);
     discretization.initialize_vector(ghosted_u, true);
     discretization.initialize_vector(ghosted_w, true);
-    build_direct_access();
+    build_jacobian_matrix();
     lean.reset();
     if (discretization.lean_kernel
         && LinearSimplexKernel<dim>::applies(discretization, materials, cache))
@@ -114,6 +99,77 @@ namespace tissuefem::solid
                     discretization.locally_owned.n_elements());
       }
     signals.changed();
+  }
+
+
+  template <int dim>
+  void
+  Solid<dim>::build_jacobian_matrix()
+  {
+    TrilinosWrappers::SparsityPattern sparsity(discretization.locally_owned,
+                                               discretization.locally_owned,
+                                               discretization.locally_relevant,
+                                               parallel_tools::communicator());
+    DoFTools::make_sparsity_pattern(discretization.dof_handler,
+                                    sparsity,
+                                    discretization.constraints,
+                                    false,
+                                    Utilities::MPI::this_mpi_process(
+                                      parallel_tools::communicator()));
+    nodal_system.reset();
+    if (nodal && solves_only_through_operators
+        && NodalDilatationSystem<dim>::applies(*nodal,
+                                               discretization.constraints))
+      nodal_system
+        = std::make_unique<NodalDilatationSystem<dim>>(discretization, *nodal);
+    else if (nodal)
+      nodal->add_sparsity(discretization.constraints, sparsity);
+    sparsity.compress();
+    jacobian_matrix.reinit(sparsity);
+    build_direct_access();
+  }
+
+
+  template <int dim>
+  MatrixType &
+  Solid<dim>::jacobian()
+  {
+    AssertThrow(!nodal_system,
+                ExcMessage("The nodal dilatation's Jacobian is kept as the "
+                           "sparser system of nodal_dilatation_system.h: "
+                           "solve with solve_jacobian()."));
+    return jacobian_matrix;
+  }
+
+
+  template <int dim>
+  void
+  Solid<dim>::solve_only_through_operators(const bool             only,
+                                           solvers::LinearSolver &solver)
+  {
+    const bool wanted = only && solver.direct();
+    if (wanted == solves_only_through_operators)
+      return;
+    solves_only_through_operators = wanted;
+    if (!nodal)
+      return;
+    solver.reset();
+    build_jacobian_matrix();
+  }
+
+
+  template <int dim>
+  void
+  Solid<dim>::solve_jacobian(solvers::LinearSolver &solver,
+                             VectorType            &x,
+                             const VectorType      &b,
+                             const bool             refactorize,
+                             const double           relative_tolerance)
+  {
+    if (nodal_system)
+      nodal_system->solve(solver, x, b, refactorize);
+    else
+      solver.solve(jacobian_matrix, x, b, refactorize, relative_tolerance);
   }
 
 
@@ -355,6 +411,18 @@ namespace tissuefem::solid
     request.rows          = &lifting_constraints;
     request.inhomogeneous = true;
     assemble(request, residual);
+    // deal.II 9.4 adds |K_jj| of each cell to a constrained diagonal but
+    // K_jj e_j to its row of the right-hand side: where some cell's K_jj <
+    // 0 (a compressed St Venant-Kirchhoff cell) the update would miss the
+    // prescribed value. Each such row is diag e_j, so that it gives d_j.
+    const MatrixType &matrix
+      = nodal_system ? nodal_system->system_matrix() : jacobian_matrix;
+    for (const auto &line : lifting_constraints.get_lines())
+      if (line.entries.empty()
+          && discretization.locally_owned.is_element(line.index))
+        residual[line.index]
+          = matrix.diag_element(line.index) * line.inhomogeneity;
+    residual.compress(VectorOperation::insert);
   }
 
 

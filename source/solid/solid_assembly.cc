@@ -617,6 +617,8 @@ namespace tissuefem::solid
     discretization.initialize_assembly_vector(residual);
     if (request.jacobian)
       jacobian_matrix = 0;
+    if (request.jacobian && nodal_system)
+      nodal_system->clear();
 
     // One cell: its elastic part (stresses at the points, or the
     // edge-length element), loads and inertia at the points, tractions on
@@ -670,7 +672,16 @@ namespace tissuefem::solid
                     copier,
                     Scratch<dim>(discretization, neumann),
                     Copy(cache.n_dofs));
-    if (request.internal && patches)
+    if (request.internal && patches && nodal_system)
+      for (const auto &cell : nodal_system->assemble(*request.u,
+                                                     materials,
+                                                     fibre_field,
+                                                     *request.rows,
+                                                     request.inhomogeneous,
+                                                     request.jacobian,
+                                                     residual))
+        inverted.push_back(cell);
+    else if (request.internal && patches)
       for (const auto &cell : nodal->assemble(*request.u,
                                               materials,
                                               fibre_field,
@@ -685,6 +696,8 @@ namespace tissuefem::solid
     residual.compress(VectorOperation::add);
     if (request.jacobian)
       jacobian_matrix.compress(VectorOperation::add);
+    if (request.jacobian && nodal_system)
+      nodal_system->finish(jacobian_matrix, residual);
     if (three_field.active() && request.internal)
       three_field.initialized();
     report_inversions(inverted);

@@ -41,6 +41,9 @@ namespace tissuefem::time
     context   = &c;
     step_size = c.time.time_step;
     c.solid.initialize_vector(state.a);
+    // Only the trust region multiplies with the Jacobian itself.
+    c.solid.solve_only_through_operators(!c.newton.trust_region,
+                                         c.linear_solver);
   }
 
 
@@ -61,10 +64,8 @@ namespace tissuefem::time
     residual *= -1.;
     update.reinit(u);
     start = std::chrono::steady_clock::now();
-    context->linear_solver.solve(solid.jacobian(),
-                                 update,
-                                 residual,
-                                 refactorize);
+    solid.solve_jacobian(
+      context->linear_solver, update, residual, refactorize, 0.);
     report.solve_seconds += seconds_since(start);
     // The cell unknowns of the three-field element move with the update.
     auto *unknowns = solid.iteration_unknowns();
@@ -224,8 +225,11 @@ namespace tissuefem::time
       const double norm = b.l2_norm();
       if (first == 0)
         first = norm;
-      context->linear_solver.solve(
-        solid.jacobian(), x, b, refactorize, std::min(0.1, 0.5 * norm / first));
+      solid.solve_jacobian(context->linear_solver,
+                           x,
+                           b,
+                           refactorize,
+                           std::min(0.1, 0.5 * norm / first));
     };
     const auto newton = [&](const bool lifted_first) {
       return context->newton.trust_region && energy

@@ -75,6 +75,10 @@ namespace tissuefem::solid
              VectorType                        &residual) const;
 
   private:
+    /// Assembles the same tangent in a sparser form from the cells.
+    template <int>
+    friend class NodalDilatationSystem;
+
     struct Cell
     {
       unsigned int                         active_index;

@@ -5,6 +5,7 @@
 #include <tissuefem/base/parallel.h>
 #include <tissuefem/forces/interface.h>
 #include <tissuefem/solid/iteration_unknowns.h>
+#include <tissuefem/solvers/linear_solver.h>
 
 #include <limits>
 #include <optional>
@@ -120,9 +121,40 @@ namespace tissuefem::solid
     }
 
     /// The Jacobian of the last implicit_residual() call that asked for it.
+    /// Not available after solve_only_through_operators(true) where that
+    /// changed the form of the Newton systems.
     virtual MatrixType &
     jacobian()
       = 0;
+
+    /**
+     * Declares (with @p only true) that the caller solves the Newton
+     * systems with the Jacobian only through solve_jacobian() with
+     * @p solver and never asks for jacobian(): then, with a direct solver,
+     * a formulation may solve an equivalent system of another form (the
+     * nodal dilatation's, nodal_dilatation_system.h). Where that changes
+     * the matrix, @p solver is reset first (a kept factorization refers to
+     * the matrix).
+     */
+    virtual void
+    solve_only_through_operators(const bool only, solvers::LinearSolver &solver)
+    {
+      (void)only;
+      (void)solver;
+    }
+
+    /// Solves J x = b with the Jacobian of the last implicit_residual() or
+    /// implicit_residual_lifting() that asked for it (b its negated
+    /// residual), as solvers::LinearSolver::solve() does.
+    virtual void
+    solve_jacobian(solvers::LinearSolver &solver,
+                   VectorType            &x,
+                   const VectorType      &b,
+                   const bool             refactorize,
+                   const double           relative_tolerance)
+    {
+      solver.solve(jacobian(), x, b, refactorize, relative_tolerance);
+    }
 
     /// f_int(u) alone (no matrix): what explicit methods evaluate. Rows of
     /// constrained degrees of freedom are included.

@@ -13,6 +13,7 @@
 #include <tissuefem/solid/fibre_field.h>
 #include <tissuefem/solid/linear_simplex_kernel.h>
 #include <tissuefem/solid/nodal_dilatation.h>
+#include <tissuefem/solid/nodal_dilatation_system.h>
 #include <tissuefem/solid/operators.h>
 #include <tissuefem/solid/three_field_dilatation.h>
 
@@ -121,10 +122,18 @@ namespace tissuefem::solid
                     const double      time) override;
 
     MatrixType &
-    jacobian() override
-    {
-      return jacobian_matrix;
-    }
+    jacobian() override;
+
+    void
+    solve_only_through_operators(const bool             only,
+                                 solvers::LinearSolver &solver) override;
+
+    void
+    solve_jacobian(solvers::LinearSolver &solver,
+                   VectorType            &x,
+                   const VectorType      &b,
+                   const bool             refactorize,
+                   const double           relative_tolerance) override;
 
     /// The elements' f_int(u) (no force contributions).
     void
@@ -504,8 +513,15 @@ namespace tissuefem::solid
     /// The nodally averaged dilatation's patches ('Formulation = nodal
     /// dilatation'), rebuilt with the mesh.
     std::unique_ptr<NodalDilatation<dim>> nodal;
-    FibreField<dim>                       fibre_field;
-    DilatationCarry<dim>                  carry;
+    /// Its Newton systems with P1's stencil, where the caller solves only
+    /// through solve_jacobian() with a direct solver (else null: the wide
+    /// Jacobian in jacobian_matrix).
+    std::unique_ptr<NodalDilatationSystem<dim>> nodal_system;
+    /// Whether the caller solves only through solve_jacobian(), with a
+    /// direct solver (solve_only_through_operators()).
+    bool                 solves_only_through_operators = false;
+    FibreField<dim>      fibre_field;
+    DilatationCarry<dim> carry;
     /// The three-field unknowns, written by the assembly (one cell per
     /// thread) while iterating().
     mutable ThreeFieldDilatation three_field;
@@ -598,5 +614,10 @@ namespace tissuefem::solid
 
     void
     build_direct_access();
+
+    /// The Jacobian's sparsity and matrix for the current dofs (and the
+    /// nodal dilatation's system where it serves), then direct access.
+    void
+    build_jacobian_matrix();
   };
 } // namespace tissuefem::solid

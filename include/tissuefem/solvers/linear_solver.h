@@ -93,6 +93,13 @@ namespace tissuefem::solvers
           const bool        refactorize        = true,
           const double      relative_tolerance = 0);
 
+    /// Whether the type is a sparse direct solver (not 'cg amg').
+    bool
+    direct() const
+    {
+      return parameters.type != "cg amg";
+    }
+
     const LinearSolverStatistics &
     statistics() const
     {

@@ -1,0 +1,421 @@
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/parallel.h>
+#include <deal.II/base/work_stream.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/trilinos_index_access.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
+#include <deal.II/lac/vector.h>
+
+#include <tissuefem/solid/nodal_dilatation_system.h>
+
+#include <cstring>
+
+namespace tissuefem::solid
+{
+  namespace
+  {
+    /// @p from's lines (Dirichlet values, no entries) on the augmented
+    /// unknowns, whose displacement part is numbered as @p from's.
+    void
+    copy_lines(const AffineConstraints<double> &from,
+               const IndexSet                  &relevant,
+               AffineConstraints<double>       &to)
+    {
+      to.clear();
+      to.reinit(relevant);
+      for (const auto &line : from.get_lines())
+        if (relevant.is_element(line.index))
+          {
+            AssertThrow(line.entries.empty(), ExcInternalError());
+            to.add_line(line.index);
+            to.set_inhomogeneity(line.index, line.inhomogeneity);
+          }
+      to.close();
+    }
+  } // namespace
+
+
+  template <int dim>
+  bool
+  NodalDilatationSystem<dim>::applies(
+    const NodalDilatation<dim>      &nodal,
+    const AffineConstraints<double> &constraints)
+  {
+    if (dim < 2)
+      return false;
+    for (const auto &line : constraints.get_lines())
+      if (!line.entries.empty())
+        return false;
+    // dof(node k, component c) = dim v + c for some vertex number v.
+    for (const auto &cell : nodal.cells)
+      for (unsigned int i = 0; i < cell.dofs.size(); ++i)
+        {
+          const auto [node, component] = cell.node_component[i];
+          if (cell.dofs[i] % dim != component)
+            return false;
+          for (unsigned int j = 0; j < cell.dofs.size(); ++j)
+            if (cell.node_component[j].first == node
+                && cell.dofs[j] / dim != cell.dofs[i] / dim)
+              return false;
+        }
+    return true;
+  }
+
+
+  template <int dim>
+  NodalDilatationSystem<dim>::NodalDilatationSystem(
+    const Discretization<dim>  &discretization,
+    const NodalDilatation<dim> &nodal)
+      : nodal(nodal)
+  {
+    n_u                = discretization.n_dofs();
+    n_vertices         = n_u / dim;
+    const auto augment = [&](const IndexSet &dofs) {
+      IndexSet vertices(n_vertices);
+      for (const auto i : dofs)
+        if (i % dim == 0)
+          vertices.add_index(i / dim);
+      IndexSet result(n_u + 2 * n_vertices);
+      result.add_indices(dofs);
+      result.add_indices(vertices, n_u);
+      result.add_indices(vertices, n_u + n_vertices);
+      result.compress();
+      return result;
+    };
+    owned    = augment(discretization.locally_owned);
+    relevant = augment(discretization.locally_relevant);
+
+    const auto &cells = nodal.cells;
+    volume_around.assign(
+      discretization.dof_handler.get_triangulation().n_vertices(), 0.);
+    for (const auto &cell : cells)
+      for (const unsigned int v : cell.vertex)
+        volume_around[v] += cell.volume;
+    for (unsigned int g = 0; g < cells.size(); ++g)
+      if (cells[g].owned)
+        owned_cells.push_back(g);
+    s_index.resize(cells.size());
+    share.resize(cells.size());
+    for (unsigned int g = 0; g < cells.size(); ++g)
+      {
+        for (unsigned int i = 0; i < cells[g].dofs.size(); ++i)
+          if (cells[g].node_component[i].second == 0)
+            s_index[g][cells[g].node_component[i].first]
+              = n_u + cells[g].dofs[i] / dim;
+        for (unsigned int k = 0; k <= dim; ++k)
+          share[g][k] = cells[g].volume / volume_around[cells[g].vertex[k]];
+      }
+
+    // The couplings of each owned cell's displacement, s and p.
+    copy_lines(discretization.constraints, relevant, augmented_rows);
+    TrilinosWrappers::SparsityPattern    sparsity(owned,
+                                               owned,
+                                               relevant,
+                                               parallel_tools::communicator());
+    std::vector<types::global_dof_index> indices;
+    for (unsigned int g = 0; g < cells.size(); ++g)
+      if (cells[g].owned)
+        {
+          indices = cells[g].dofs;
+          for (unsigned int k = 0; k <= dim; ++k)
+            indices.push_back(s_index[g][k]);
+          for (unsigned int k = 0; k <= dim; ++k)
+            indices.push_back(s_index[g][k] + n_vertices);
+          augmented_rows.add_entries_local_to_global(indices, sparsity, false);
+        }
+    sparsity.compress();
+    matrix.reinit(sparsity);
+    rhs.reinit(owned, relevant, parallel_tools::communicator(), true);
+    pressure_sum.reinit(owned, relevant, parallel_tools::communicator(), true);
+    pressure.reinit(owned, relevant, parallel_tools::communicator());
+  }
+
+
+  template <int dim>
+  void
+  NodalDilatationSystem<dim>::clear()
+  {
+    matrix = 0;
+    rhs    = 0;
+  }
+
+
+  template <int dim>
+  std::vector<std::tuple<unsigned int, double, Point<dim>>>
+  NodalDilatationSystem<dim>::assemble(
+    const VectorType                  &u,
+    const materials::MaterialSet<dim> &materials,
+    const FibreField<dim>             &fibres,
+    const AffineConstraints<double>   &rows,
+    const bool                         inhomogeneous,
+    const bool                         jacobian,
+    VectorType                        &residual)
+  {
+    const auto        &cells = nodal.cells;
+    const unsigned int n     = cells.size();
+    if (jacobian)
+      copy_lines(rows, relevant, augmented_rows);
+
+    // F, J, J F^{-T} of every cell here, and the vertices' dilatations.
+    std::vector<Tensor<2, dim>> F(n), cofactor(n);
+    std::vector<double>         J(n);
+    volume_times_J.assign(volume_around.size(), 0.);
+    for (unsigned int g = 0; g < n; ++g)
+      {
+        F[g] = nodal.deformation_gradient(cells[g], u);
+        J[g] = determinant(F[g]);
+        if (J[g] != 0)
+          cofactor[g] = J[g] * transpose(invert(F[g]));
+        for (const unsigned int v : cells[g].vertex)
+          volume_times_J[v] += cells[g].volume * J[g];
+      }
+
+    // First pass, per owned cell: Psi-hat's derivatives at Jbar, and the
+    // pressures pi_b they give the vertices (summed over the processes).
+    struct Terms
+    {
+      bool                     defined  = false;
+      double                   smallest = 0;
+      MeanDilatationPoint<dim> psi;
+    };
+    std::vector<Terms> terms(n);
+    parallel::apply_to_subranges(
+      0U,
+      n,
+      [&](const unsigned int begin, const unsigned int end) {
+        for (unsigned int e = begin; e < end; ++e)
+          {
+            const auto &cell = cells[e];
+            if (!cell.owned)
+              continue;
+            double theta = 0;
+            for (const unsigned int v : cell.vertex)
+              theta += volume_times_J[v] / volume_around[v] / (dim + 1);
+            const auto &material = materials.material(cell.material_id);
+            terms[e].defined
+              = theta / J[e] > 0
+                && (material.admits_inversion() || (J[e] > 0 && theta > 0));
+            if (terms[e].defined)
+              terms[e].psi = nodal.derivatives(
+                cell, F[e], theta, materials, fibres, jacobian);
+            else
+              terms[e].smallest = std::min(J[e], theta);
+          }
+      },
+      64);
+    std::vector<std::tuple<unsigned int, double, Point<dim>>> inverted;
+    std::vector<types::global_dof_index>                      where;
+    std::vector<double>                                       what;
+    for (unsigned int e = 0; e < n; ++e)
+      if (cells[e].owned && !terms[e].defined)
+        inverted.emplace_back(cells[e].active_index,
+                              terms[e].smallest,
+                              cells[e].centre);
+      else if (cells[e].owned)
+        for (unsigned int k = 0; k <= dim; ++k)
+          {
+            where.push_back(s_index[e][k]);
+            what.push_back(terms[e].psi.phi_theta / (dim + 1));
+          }
+    pressure_sum = 0;
+    pressure_sum.add(where, what);
+    pressure_sum.compress(VectorOperation::add);
+    pressure = pressure_sum;
+
+    // Second pass, per owned cell: its blocks of the system.
+    struct Copy
+    {
+      FullMatrix<double>                   K;
+      Vector<double>                       r;
+      std::vector<types::global_dof_index> indices;
+    };
+    auto worker = [&](const std::vector<unsigned int>::const_iterator &it,
+                      int &,
+                      Copy &copy) {
+      const unsigned int g = *it;
+      add_cell(g,
+               terms[g].defined ? &terms[g].psi : nullptr,
+               J[g],
+               cofactor[g],
+               jacobian,
+               copy.K,
+               copy.r);
+      copy.indices = cells[g].dofs;
+      if (!jacobian)
+        return;
+      for (unsigned int k = 0; k <= dim; ++k)
+        copy.indices.push_back(s_index[g][k]);
+      for (unsigned int k = 0; k <= dim; ++k)
+        copy.indices.push_back(s_index[g][k] + n_vertices);
+    };
+    auto copier = [&](const Copy &copy) {
+      if (jacobian)
+        augmented_rows.distribute_local_to_global(
+          copy.K, copy.r, copy.indices, matrix, rhs, inhomogeneous);
+      else
+        {
+          // The displacement rows only.
+          Vector<double> r(copy.indices.size());
+          for (unsigned int i = 0; i < r.size(); ++i)
+            r(i) = copy.r(i);
+          rows.distribute_local_to_global(r, copy.indices, residual);
+        }
+    };
+    WorkStream::run(
+      owned_cells.cbegin(), owned_cells.cend(), worker, copier, 0, Copy());
+    return inverted;
+  }
+
+
+  template <int dim>
+  void
+  NodalDilatationSystem<dim>::add_cell(const unsigned int              g,
+                                       const MeanDilatationPoint<dim> *psi,
+                                       const double                    J,
+                                       const Tensor<2, dim>           &cofactor,
+                                       const bool                      jacobian,
+                                       FullMatrix<double>             &K,
+                                       Vector<double>                 &r) const
+  {
+    const auto        &cell = nodal.cells[g];
+    const unsigned int n_e  = cell.dofs.size();
+    const unsigned int s0 = n_e, p0 = n_e + dim + 1;
+    r.reinit(n_e + 2 * (dim + 1));
+    // a_k = J F^{-T} grad N_k: dJ/du for (node k, component c) is a_k[c].
+    std::array<Tensor<1, dim>, dim + 1> a;
+    for (unsigned int k = 0; k <= dim; ++k)
+      a[k] = cofactor * cell.gradient[k];
+    double omega = 0; // sum_b V_g / V_b pi_b
+    for (unsigned int k = 0; k <= dim; ++k)
+      omega += share[g][k] * pressure[s_index[g][k]];
+    for (unsigned int i = 0; i < n_e; ++i)
+      {
+        const auto [k, c] = cell.node_component[i];
+        r(i) += omega * a[k][c];
+        if (psi)
+          r(i) += psi->phi_F[c] * cell.gradient[k];
+      }
+    if (!jacobian)
+      return;
+    K.reinit(n_e + 2 * (dim + 1), n_e + 2 * (dim + 1));
+    for (unsigned int i = 0; i < n_e; ++i)
+      {
+        const auto [k, c] = cell.node_component[i];
+        if (J != 0)
+          for (unsigned int j = 0; j < n_e; ++j)
+            {
+              // pi times the second derivative of J (nodal_dilatation.cc).
+              const auto [l, d] = cell.node_component[j];
+              K(i, j) += omega / J * (a[k][c] * a[l][d] - a[l][c] * a[k][d]);
+            }
+        // Z, and -I: the rows of p say s_b = Z_b du.
+        for (unsigned int b = 0; b <= dim; ++b)
+          {
+            K(p0 + b, i) += share[g][b] * a[k][c];
+            K(i, p0 + b) += share[g][b] * a[k][c];
+          }
+      }
+    for (unsigned int b = 0; b <= dim; ++b)
+      {
+        K(s0 + b, p0 + b) -= share[g][b];
+        K(p0 + b, s0 + b) -= share[g][b];
+      }
+    if (!psi)
+      return;
+    // The cell's own energy: phi_FF, and through Jbar = sum_b J_b / (d + 1)
+    // its couplings Y to s and H among the s.
+    std::array<Tensor<2, dim>, (dim + 1) * dim> dF;
+    for (unsigned int i = 0; i < n_e; ++i)
+      {
+        const auto [k, c] = cell.node_component[i];
+        dF[i]             = Tensor<2, dim>();
+        dF[i][c]          = cell.gradient[k];
+      }
+    for (unsigned int i = 0; i < n_e; ++i)
+      {
+        const Tensor<2, dim> AdF
+          = double_contract<2, 0, 3, 1>(psi->phi_FF, dF[i]);
+        for (unsigned int j = 0; j < n_e; ++j)
+          K(i, j) += scalar_product(AdF, dF[j]);
+        const double y = scalar_product(psi->phi_F_theta, dF[i]) / (dim + 1);
+        for (unsigned int b = 0; b <= dim; ++b)
+          {
+            K(s0 + b, i) += y;
+            K(i, s0 + b) += y;
+          }
+      }
+    const double h = psi->phi_theta_theta / ((dim + 1) * (dim + 1));
+    for (unsigned int b = 0; b <= dim; ++b)
+      for (unsigned int c = 0; c <= dim; ++c)
+        K(s0 + b, s0 + c) += h;
+  }
+
+
+  template <int dim>
+  void
+  NodalDilatationSystem<dim>::finish(const MatrixType &uu, VectorType &residual)
+  {
+    matrix.compress(VectorOperation::add);
+    rhs.compress(VectorOperation::add);
+    const Epetra_CrsMatrix &from = uu.trilinos_matrix();
+    // deal.II hands out the Epetra matrix read-only; the entries exist.
+    auto &to = const_cast<Epetra_CrsMatrix &>(matrix.trilinos_matrix());
+    std::vector<TrilinosWrappers::types::int_type> columns;
+    for (int row = 0; row < from.NumMyRows(); ++row)
+      {
+        int     length;
+        double *values;
+        int    *local;
+        from.ExtractMyRowView(row, length, values, local);
+        columns.resize(length);
+        for (int k = 0; k < length; ++k)
+          columns[k] = TrilinosWrappers::global_column_index(from, local[k]);
+        const int error
+          = to.SumIntoGlobalValues(TrilinosWrappers::global_row_index(from,
+                                                                      row),
+                                   length,
+                                   values,
+                                   columns.data());
+        AssertThrow(error == 0, ExcInternalError());
+      }
+    // The displacement rows come first among the owned unknowns here and
+    // are all of @p residual's.
+    const unsigned int n_owned_u = residual.locally_owned_size();
+    double            *into      = residual.trilinos_vector()[0];
+    const double      *elastic   = rhs.trilinos_vector()[0];
+    for (unsigned int i = 0; i < n_owned_u; ++i)
+      into[i] += elastic[i];
+  }
+
+
+  template <int dim>
+  void
+  NodalDilatationSystem<dim>::solve(solvers::LinearSolver &solver,
+                                    VectorType            &x,
+                                    const VectorType      &b,
+                                    const bool             refactorize)
+  {
+    VectorType         B(owned, parallel_tools::communicator());
+    VectorType         X(owned, parallel_tools::communicator());
+    const unsigned int n_owned_u = b.locally_owned_size();
+    double            *into      = B.trilinos_vector()[0];
+    const double      *lifted    = rhs.trilinos_vector()[0];
+    std::memcpy(into, b.trilinos_vector()[0], n_owned_u * sizeof(double));
+    // b = -R: the rows of s and p take the lifting's terms negated too,
+    // once (a later solve with a kept factorization has none).
+    for (unsigned int i = n_owned_u; i < B.locally_owned_size(); ++i)
+      into[i] = -lifted[i];
+    double *rest = rhs.trilinos_vector()[0];
+    for (unsigned int i = n_owned_u; i < B.locally_owned_size(); ++i)
+      rest[i] = 0;
+    solver.solve(matrix, X, B, refactorize);
+    std::memcpy(x.trilinos_vector()[0],
+                X.trilinos_vector()[0],
+                n_owned_u * sizeof(double));
+  }
+
+
+  template class NodalDilatationSystem<1>;
+  template class NodalDilatationSystem<2>;
+  template class NodalDilatationSystem<3>;
+} // namespace tissuefem::solid
