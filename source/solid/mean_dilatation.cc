@@ -82,6 +82,58 @@ namespace tissuefem::solid
                                      const Tensor<4, dim>     &A_bar,
                                      MeanDilatationPoint<dim> &point)
   {
+    // g(F, theta) = s F: dg_e/dF_kl = s delta_e,kl + F_e S_kl, dg_e/dtheta =
+    // F_e s_t; the second derivatives add S and s_t to the identity parts
+    // and F_e times those of s. phi's derivatives chain Pbar and Abar.
+    const double         J     = determinant(F);
+    const double         s     = std::pow(theta / J, 1. / dim);
+    const Tensor<2, dim> F_inv = invert(F);
+    const Tensor<2, dim> S     = -(s / dim) * transpose(F_inv);
+    const double         s_t   = s / (dim * theta);
+    const double s_tt = (1. / dim) * (1. / dim - 1.) * s / (theta * theta);
+    const Tensor<2, dim> s_Ft = -(s_t / dim) * transpose(F_inv);
+    const double         PF   = scalar_product(P_bar, F);
+    Tensor<2, dim>       AF, FA; // Abar : F and F : Abar
+    for (unsigned int k = 0; k < dim; ++k)
+      for (unsigned int l = 0; l < dim; ++l)
+        for (unsigned int m = 0; m < dim; ++m)
+          for (unsigned int n = 0; n < dim; ++n)
+            {
+              AF[k][l] += A_bar[k][l][m][n] * F[m][n];
+              FA[m][n] += F[k][l] * A_bar[k][l][m][n];
+            }
+    const double FAF = scalar_product(FA, F);
+    point.phi_F      = s * P_bar + PF * S;
+    point.phi_theta  = PF * s_t;
+    for (unsigned int k = 0; k < dim; ++k)
+      for (unsigned int l = 0; l < dim; ++l)
+        {
+          point.phi_F_theta[k][l] = s_t * (s * AF[k][l] + S[k][l] * FAF)
+                                    + s_t * P_bar[k][l] + PF * s_Ft[k][l];
+          for (unsigned int m = 0; m < dim; ++m)
+            for (unsigned int n = 0; n < dim; ++n)
+              {
+                // d2s/dF_kl dF_mn
+                const double s_FF = s / (dim * dim) * F_inv[l][k] * F_inv[n][m]
+                                    + s / dim * F_inv[l][m] * F_inv[n][k];
+                point.phi_FF[k][l][m][n]
+                  = s * s * A_bar[k][l][m][n] + s * S[m][n] * AF[k][l]
+                    + s * S[k][l] * FA[m][n] + S[k][l] * S[m][n] * FAF
+                    + P_bar[k][l] * S[m][n] + P_bar[m][n] * S[k][l] + PF * s_FF;
+              }
+        }
+    point.phi_theta_theta = s_t * s_t * FAF + PF * s_tt;
+  }
+
+
+  template <int dim>
+  void
+  mean_dilatation_stress_and_tangent_by_ad(const Tensor<2, dim>     &F,
+                                           const double              theta,
+                                           const Tensor<2, dim>     &P_bar,
+                                           const Tensor<4, dim>     &A_bar,
+                                           MeanDilatationPoint<dim> &point)
+  {
     // Variables x = (F_00, F_01, ..., F_dd, theta); g(x) = Fbar.
     constexpr int n = dim * dim + 1;
     using Inner     = Sacado::Fad::SFad<double, n>;
@@ -167,6 +219,12 @@ namespace tissuefem::solid
                                             const Tensor<2, dim> &,         \
                                             MeanDilatationPoint<dim> &);    \
   template void mean_dilatation_stress_and_tangent<dim>(                    \
+    const Tensor<2, dim> &,                                                 \
+    const double,                                                           \
+    const Tensor<2, dim> &,                                                 \
+    const Tensor<4, dim> &,                                                 \
+    MeanDilatationPoint<dim> &);                                            \
+  template void mean_dilatation_stress_and_tangent_by_ad<dim>(              \
     const Tensor<2, dim> &,                                                 \
     const double,                                                           \
     const Tensor<2, dim> &,                                                 \

@@ -20,6 +20,7 @@ namespace tissuefem::solid
     const auto &fe          = *discretization.fe;
     const auto &mesh        = dof_handler.get_triangulation();
     n_active_cells          = mesh.n_active_cells();
+    n_vertices              = mesh.n_vertices();
 
     std::map<unsigned int, std::vector<unsigned int>> around;
     std::vector<bool> needed(mesh.n_vertices(), false);
@@ -88,7 +89,7 @@ namespace tissuefem::solid
   NodalDilatation<dim>::build_patches(
     const std::map<unsigned int, std::vector<unsigned int>> &around)
   {
-    std::map<unsigned int, double> volume_around;
+    volume_around.assign(n_vertices, 0.);
     for (const auto &[vertex, list] : around)
       for (const unsigned int g : list)
         volume_around[vertex] += cells[g].volume;
@@ -161,13 +162,26 @@ namespace tissuefem::solid
   std::vector<double>
   NodalDilatation<dim>::dilatations(const VectorType &u) const
   {
-    std::vector<double> J(cells.size());
-    for (unsigned int g = 0; g < cells.size(); ++g)
-      J[g] = determinant(deformation_gradient(cells[g], u));
+    // Jbar_e = sum_{b in e} J_b / (d + 1), J_b = sum_{g at b} V_g J_g / V_b:
+    // one pass over the cells and one over the owned ones (the same as
+    // sum_g c_g J_g over the patch, in O(cells)).
+    std::vector<double> volume_times_J(volume_around.size(), 0.);
+    for (const Cell &cell : cells)
+      {
+        const double J = determinant(deformation_gradient(cell, u));
+        for (const unsigned int v : cell.vertex)
+          volume_times_J[v] += cell.volume * J;
+      }
     std::vector<double> result(n_active_cells,
                                std::numeric_limits<double>::quiet_NaN());
     for (const Patch &patch : patches)
-      result[cells[patch.cell].active_index] = dilatation(patch, J);
+      {
+        const Cell &cell  = cells[patch.cell];
+        double      theta = 0;
+        for (const unsigned int v : cell.vertex)
+          theta += volume_times_J[v] / volume_around[v] / (dim + 1);
+        result[cell.active_index] = theta;
+      }
     return result;
   }
 

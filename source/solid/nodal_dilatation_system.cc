@@ -8,6 +8,7 @@
 
 #include <tissuefem/solid/nodal_dilatation_system.h>
 
+#include <algorithm>
 #include <cstring>
 
 namespace tissuefem::solid
@@ -85,12 +86,8 @@ namespace tissuefem::solid
     owned    = augment(discretization.locally_owned);
     relevant = augment(discretization.locally_relevant);
 
-    const auto &cells = nodal.cells;
-    volume_around.assign(
-      discretization.dof_handler.get_triangulation().n_vertices(), 0.);
-    for (const auto &cell : cells)
-      for (const unsigned int v : cell.vertex)
-        volume_around[v] += cell.volume;
+    const auto &cells         = nodal.cells;
+    const auto &volume_around = nodal.volume_around;
     for (unsigned int g = 0; g < cells.size(); ++g)
       if (cells[g].owned)
         owned_cells.push_back(g);
@@ -102,8 +99,12 @@ namespace tissuefem::solid
           if (cells[g].node_component[i].second == 0)
             s_index[g][cells[g].node_component[i].first]
               = n_u + cells[g].dofs[i] / dim;
+        // V_g / V_b, used at the vertices of owned cells (whose cells are
+        // all here; V_b is 0 at the others).
         for (unsigned int k = 0; k <= dim; ++k)
-          share[g][k] = cells[g].volume / volume_around[cells[g].vertex[k]];
+          share[g][k] = cells[g].owned
+                          ? cells[g].volume / volume_around[cells[g].vertex[k]]
+                          : 0.;
       }
 
     // The couplings of each owned cell's displacement, s and p.
@@ -116,11 +117,7 @@ namespace tissuefem::solid
     for (unsigned int g = 0; g < cells.size(); ++g)
       if (cells[g].owned)
         {
-          indices = cells[g].dofs;
-          for (unsigned int k = 0; k <= dim; ++k)
-            indices.push_back(s_index[g][k]);
-          for (unsigned int k = 0; k <= dim; ++k)
-            indices.push_back(s_index[g][k] + n_vertices);
+          local_indices(g, indices);
           augmented_rows.add_entries_local_to_global(indices, sparsity, false);
         }
     sparsity.compress();
@@ -128,6 +125,82 @@ namespace tissuefem::solid
     rhs.reinit(owned, relevant, parallel_tools::communicator(), true);
     pressure_sum.reinit(owned, relevant, parallel_tools::communicator(), true);
     pressure.reinit(owned, relevant, parallel_tools::communicator());
+    build_direct_access(discretization.constraints);
+  }
+
+
+  template <int dim>
+  void
+  NodalDilatationSystem<dim>::build_direct_access(
+    const AffineConstraints<double> &constraints)
+  {
+    // Where each owned cell's rows and entries lie in the matrix's and the
+    // right-hand side's arrays, for cells whose displacement dofs are all
+    // owned and free (then so are their vertices' s and p): those add in
+    // place, the others through deal.II's constraints.
+    const auto             &cells = nodal.cells;
+    const Epetra_CrsMatrix &M     = matrix.trilinos_matrix();
+    const unsigned int      n_a
+      = cells.empty() ? 0 : cells[0].dofs.size() + 2 * (dim + 1);
+    direct.row_values.resize(M.NumMyRows());
+    for (int r = 0; r < M.NumMyRows(); ++r)
+      {
+        int     length;
+        double *values;
+        int    *columns;
+        M.ExtractMyRowView(r, length, values, columns);
+        direct.row_values[r] = values;
+      }
+    direct.row.assign(owned_cells.size() * n_a, -1);
+    direct.entry.assign(owned_cells.size() * n_a * n_a, -1);
+    const auto &ghosts = pressure.trilinos_vector().Map();
+    pressure_entry.resize(cells.size());
+    for (unsigned int g = 0; g < cells.size(); ++g)
+      for (unsigned int k = 0; k <= dim; ++k)
+        pressure_entry[g][k] = ghosts.LID(
+          static_cast<TrilinosWrappers::types::int_type>(s_index[g][k]));
+    std::vector<types::global_dof_index> indices;
+    for (unsigned int o = 0; o < owned_cells.size(); ++o)
+      {
+        const auto &cell = cells[owned_cells[o]];
+        bool        free = true;
+        for (const auto i : cell.dofs)
+          free = free && owned.is_element(i) && !constraints.is_constrained(i);
+        if (!free)
+          continue;
+        local_indices(owned_cells[o], indices);
+        for (unsigned int i = 0; i < n_a; ++i)
+          {
+            const int r             = owned.index_within_set(indices[i]);
+            direct.row[o * n_a + i] = r;
+            int     length;
+            double *values;
+            int    *columns;
+            M.ExtractMyRowView(r, length, values, columns);
+            for (unsigned int j = 0; j < n_a; ++j)
+              {
+                const int column = M.ColMap().LID(
+                  static_cast<TrilinosWrappers::types::int_type>(indices[j]));
+                const int *found = std::find(columns, columns + length, column);
+                AssertThrow(found != columns + length, ExcInternalError());
+                direct.entry[(o * n_a + i) * n_a + j] = found - columns;
+              }
+          }
+      }
+  }
+
+
+  template <int dim>
+  void
+  NodalDilatationSystem<dim>::local_indices(
+    const unsigned int                    g,
+    std::vector<types::global_dof_index> &indices) const
+  {
+    indices = nodal.cells[g].dofs;
+    for (unsigned int k = 0; k <= dim; ++k)
+      indices.push_back(s_index[g][k]);
+    for (unsigned int k = 0; k <= dim; ++k)
+      indices.push_back(s_index[g][k] + n_vertices);
   }
 
 
@@ -159,6 +232,7 @@ namespace tissuefem::solid
     // F, J, J F^{-T} of every cell here, and the vertices' dilatations.
     std::vector<Tensor<2, dim>> F(n), cofactor(n);
     std::vector<double>         J(n);
+    const auto                 &volume_around = nodal.volume_around;
     volume_times_J.assign(volume_around.size(), 0.);
     for (unsigned int g = 0; g < n; ++g)
       {
@@ -225,13 +299,16 @@ namespace tissuefem::solid
     // Second pass, per owned cell: its blocks of the system.
     struct Copy
     {
+      unsigned int                         o = 0;
       FullMatrix<double>                   K;
       Vector<double>                       r;
       std::vector<types::global_dof_index> indices;
     };
-    auto worker = [&](const std::vector<unsigned int>::const_iterator &it,
+    double *rhs_values = rhs.trilinos_vector()[0];
+    auto    worker = [&](const std::vector<unsigned int>::const_iterator &it,
                       int &,
                       Copy &copy) {
+      copy.o               = it - owned_cells.cbegin();
       const unsigned int g = *it;
       add_cell(g,
                terms[g].defined ? &terms[g].psi : nullptr,
@@ -240,26 +317,36 @@ namespace tissuefem::solid
                jacobian,
                copy.K,
                copy.r);
-      copy.indices = cells[g].dofs;
-      if (!jacobian)
-        return;
-      for (unsigned int k = 0; k <= dim; ++k)
-        copy.indices.push_back(s_index[g][k]);
-      for (unsigned int k = 0; k <= dim; ++k)
-        copy.indices.push_back(s_index[g][k] + n_vertices);
+      local_indices(g, copy.indices);
     };
     auto copier = [&](const Copy &copy) {
-      if (jacobian)
-        augmented_rows.distribute_local_to_global(
-          copy.K, copy.r, copy.indices, matrix, rhs, inhomogeneous);
-      else
+      const unsigned int n_a = copy.indices.size();
+      const int         *row = &direct.row[copy.o * n_a];
+      if (!jacobian)
         {
           // The displacement rows only.
-          Vector<double> r(copy.indices.size());
-          for (unsigned int i = 0; i < r.size(); ++i)
+          const unsigned int n_e = nodal.cells[owned_cells[copy.o]].dofs.size();
+          Vector<double>     r(n_e);
+          for (unsigned int i = 0; i < n_e; ++i)
             r(i) = copy.r(i);
-          rows.distribute_local_to_global(r, copy.indices, residual);
+          rows.distribute_local_to_global(
+            r,
+            std::vector<types::global_dof_index>(copy.indices.begin(),
+                                                 copy.indices.begin() + n_e),
+            residual);
         }
+      else if (row[0] >= 0)
+        for (unsigned int i = 0; i < n_a; ++i)
+          {
+            rhs_values[row[i]] += copy.r(i);
+            double    *values = direct.row_values[row[i]];
+            const int *entry  = &direct.entry[(copy.o * n_a + i) * n_a];
+            for (unsigned int j = 0; j < n_a; ++j)
+              values[entry[j]] += copy.K(i, j);
+          }
+      else
+        augmented_rows.distribute_local_to_global(
+          copy.K, copy.r, copy.indices, matrix, rhs, inhomogeneous);
     };
     WorkStream::run(
       owned_cells.cbegin(), owned_cells.cend(), worker, copier, 0, Copy());
@@ -285,9 +372,10 @@ namespace tissuefem::solid
     std::array<Tensor<1, dim>, dim + 1> a;
     for (unsigned int k = 0; k <= dim; ++k)
       a[k] = cofactor * cell.gradient[k];
-    double omega = 0; // sum_b V_g / V_b pi_b
+    const double *pressure_values = pressure.trilinos_vector()[0];
+    double        omega           = 0; // sum_b V_g / V_b pi_b
     for (unsigned int k = 0; k <= dim; ++k)
-      omega += share[g][k] * pressure[s_index[g][k]];
+      omega += share[g][k] * pressure_values[pressure_entry[g][k]];
     for (unsigned int i = 0; i < n_e; ++i)
       {
         const auto [k, c] = cell.node_component[i];
@@ -358,25 +446,17 @@ namespace tissuefem::solid
     matrix.compress(VectorOperation::add);
     rhs.compress(VectorOperation::add);
     const Epetra_CrsMatrix &from = uu.trilinos_matrix();
-    // deal.II hands out the Epetra matrix read-only; the entries exist.
-    auto &to = const_cast<Epetra_CrsMatrix &>(matrix.trilinos_matrix());
-    std::vector<TrilinosWrappers::types::int_type> columns;
-    for (int row = 0; row < from.NumMyRows(); ++row)
+    if (uu_entry.empty())
+      map_displacement_block(uu);
+    for (int row = 0, k = 0; row < from.NumMyRows(); ++row)
       {
         int     length;
         double *values;
         int    *local;
         from.ExtractMyRowView(row, length, values, local);
-        columns.resize(length);
-        for (int k = 0; k < length; ++k)
-          columns[k] = TrilinosWrappers::global_column_index(from, local[k]);
-        const int error
-          = to.SumIntoGlobalValues(TrilinosWrappers::global_row_index(from,
-                                                                      row),
-                                   length,
-                                   values,
-                                   columns.data());
-        AssertThrow(error == 0, ExcInternalError());
+        double *into = direct.row_values[uu_row[row]];
+        for (int j = 0; j < length; ++j, ++k)
+          into[uu_entry[k]] += values[j];
       }
     // The displacement rows come first among the owned unknowns here and
     // are all of @p residual's.
@@ -385,6 +465,38 @@ namespace tissuefem::solid
     const double      *elastic   = rhs.trilinos_vector()[0];
     for (unsigned int i = 0; i < n_owned_u; ++i)
       into[i] += elastic[i];
+  }
+
+
+  template <int dim>
+  void
+  NodalDilatationSystem<dim>::map_displacement_block(const MatrixType &uu)
+  {
+    // Row r of @p uu (an owned displacement dof) is row uu_row[r] here;
+    // its entries are among that row's.
+    const Epetra_CrsMatrix &from = uu.trilinos_matrix();
+    const Epetra_CrsMatrix &to   = matrix.trilinos_matrix();
+    uu_row.resize(from.NumMyRows());
+    uu_entry.clear();
+    for (int row = 0; row < from.NumMyRows(); ++row)
+      {
+        const auto global = TrilinosWrappers::global_row_index(from, row);
+        uu_row[row]       = to.RowMap().LID(global);
+        int     length, to_length;
+        double *values, *to_values;
+        int    *local, *to_local;
+        from.ExtractMyRowView(row, length, values, local);
+        to.ExtractMyRowView(uu_row[row], to_length, to_values, to_local);
+        for (int j = 0; j < length; ++j)
+          {
+            const int column = to.ColMap().LID(
+              TrilinosWrappers::global_column_index(from, local[j]));
+            const int *found
+              = std::find(to_local, to_local + to_length, column);
+            AssertThrow(found != to_local + to_length, ExcInternalError());
+            uu_entry.push_back(found - to_local);
+          }
+      }
   }
 
 

@@ -84,7 +84,7 @@ namespace tissuefem::solid
     fibre_field.build(discretization, materials);
     discretization.initialize_vector(ghosted_u, true);
     discretization.initialize_vector(ghosted_w, true);
-    build_jacobian_matrix();
+    build_jacobian_matrix(false);
     lean.reset();
     if (discretization.lean_kernel
         && LinearSimplexKernel<dim>::applies(discretization, materials, cache))
@@ -104,7 +104,7 @@ namespace tissuefem::solid
 
   template <int dim>
   void
-  Solid<dim>::build_jacobian_matrix()
+  Solid<dim>::build_jacobian_matrix(const bool wide)
   {
     TrilinosWrappers::SparsityPattern sparsity(discretization.locally_owned,
                                                discretization.locally_owned,
@@ -122,8 +122,9 @@ namespace tissuefem::solid
                                                discretization.constraints))
       nodal_system
         = std::make_unique<NodalDilatationSystem<dim>>(discretization, *nodal);
-    else if (nodal)
+    else if (nodal && wide)
       nodal->add_sparsity(discretization.constraints, sparsity);
+    wide_layout = nodal && !nodal_system && wide;
     sparsity.compress();
     jacobian_matrix.reinit(sparsity);
     build_direct_access();
@@ -154,7 +155,7 @@ namespace tissuefem::solid
     if (!nodal)
       return;
     solver.reset();
-    build_jacobian_matrix();
+    build_jacobian_matrix(false);
   }
 
 

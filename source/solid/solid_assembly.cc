@@ -615,6 +615,8 @@ namespace tissuefem::solid
       = request.external && !boundary_conditions.neumann.empty();
     boundary_conditions.set_time(request.time);
     discretization.initialize_assembly_vector(residual);
+    if (request.jacobian && patches && !nodal_system && !wide_layout)
+      build_jacobian_matrix(true);
     if (request.jacobian)
       jacobian_matrix = 0;
     if (request.jacobian && nodal_system)

@@ -14,6 +14,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <tissuefem/base/application.h>
+#include <tissuefem/solid/mean_dilatation.h>
 
 #include "../tests.h"
 #include "solid_scene.h"
@@ -110,6 +111,62 @@ namespace
                                  + std::to_string(largest));
       }
   }
+
+  /// The closed-form derivatives of phi(F, theta) = Psi(Fbar) against
+  /// nested AD through the map (F, theta) -> Fbar, for random F near the
+  /// identity, theta, Pbar and Abar (with the major symmetry of every
+  /// second derivative, A_ijkl = A_klij, which the AD version assumes).
+  template <int dim>
+  void
+  check_dilatation_chain()
+  {
+    tissuefem_tests::Random random(20261127 + dim);
+    double                  worst = 0;
+    for (unsigned int trial = 0; trial < 20; ++trial)
+      {
+        Tensor<2, dim> F, P;
+        Tensor<4, dim> A;
+        for (unsigned int i = 0; i < dim; ++i)
+          for (unsigned int j = 0; j < dim; ++j)
+            {
+              F[i][j] = (i == j) + 0.3 * random.uniform();
+              P[i][j] = random.uniform();
+              for (unsigned int k = 0; k < dim; ++k)
+                for (unsigned int l = 0; l < dim; ++l)
+                  A[i][j][k][l] = random.uniform();
+            }
+        for (unsigned int i = 0; i < dim; ++i)
+          for (unsigned int j = 0; j < dim; ++j)
+            for (unsigned int k = 0; k < dim; ++k)
+              for (unsigned int l = 0; l < dim; ++l)
+                if (std::make_pair(k, l) < std::make_pair(i, j))
+                  A[i][j][k][l] = A[k][l][i][j];
+        const double theta = determinant(F) * (1 + 0.2 * random.uniform());
+        solid::MeanDilatationPoint<dim> closed, ad;
+        solid::mean_dilatation_stress_and_tangent(F, theta, P, A, closed);
+        solid::mean_dilatation_stress_and_tangent_by_ad(F, theta, P, A, ad);
+        const auto relative = [](const auto &a, const auto &b) {
+          return (a - b).norm() / std::max(1e-300, b.norm());
+        };
+        tissuefem_tests::raise(worst, relative(closed.phi_F, ad.phi_F));
+        tissuefem_tests::raise(worst, relative(closed.phi_FF, ad.phi_FF));
+        tissuefem_tests::raise(worst,
+                               relative(closed.phi_F_theta, ad.phi_F_theta));
+        tissuefem_tests::raise(worst,
+                               std::abs(closed.phi_theta - ad.phi_theta)
+                                 / std::abs(ad.phi_theta));
+        tissuefem_tests::raise(worst,
+                               std::abs(closed.phi_theta_theta
+                                        - ad.phi_theta_theta)
+                                 / std::abs(ad.phi_theta_theta));
+      }
+    tissuefem_tests::check_small(worst,
+                                 1e-12,
+                                 "F-bar chain rule in closed form against "
+                                 "nested AD, "
+                                   + std::to_string(dim)
+                                   + "D, 20 random states");
+  }
 } // namespace
 
 
@@ -117,6 +174,8 @@ int
 main(int argc, char **argv)
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  check_dilatation_chain<2>();
+  check_dilatation_chain<3>();
   const std::string md = "mean dilatation", plain = "displacement";
   check<2>("F-bar Q1, 2D",
            scene(2, "hypercube", 1, "neo-Hookean", md, "none"),

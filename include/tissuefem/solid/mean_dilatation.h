@@ -91,7 +91,8 @@ namespace tissuefem::solid
 
   /// All first and second derivatives of phi(F, theta) from Pbar and Abar
   /// = d2Psi/dF2 at Fbar, chained with the derivatives of the map (F,
-  /// theta) -> Fbar, which nested forward AD numbers give exactly.
+  /// theta) -> Fbar = s F, s = (theta / J)^(1/d), in closed form: ds/dF =
+  /// -(s/d) F^{-T}, ds/dtheta = s / (d theta), and their derivatives.
   template <int dim>
   void
   mean_dilatation_stress_and_tangent(const Tensor<2, dim>     &F,
@@ -99,4 +100,15 @@ namespace tissuefem::solid
                                      const Tensor<2, dim>     &P_bar,
                                      const Tensor<4, dim>     &A_bar,
                                      MeanDilatationPoint<dim> &point);
+
+  /// The same by nested forward AD numbers through the map (F, theta) ->
+  /// Fbar: an independent derivation, which the tests compare with
+  /// (unit/element_consistency).
+  template <int dim>
+  void
+  mean_dilatation_stress_and_tangent_by_ad(const Tensor<2, dim>     &F,
+                                           const double              theta,
+                                           const Tensor<2, dim>     &P_bar,
+                                           const Tensor<4, dim>     &A_bar,
+                                           MeanDilatationPoint<dim> &point);
 } // namespace tissuefem::solid

@@ -147,7 +147,10 @@ namespace tissuefem::solid
     /// Reference quadrature weights, normalized to sum 1, for the fibre
     /// directions at the points (F is constant per cell).
     std::vector<double> weights;
-    /// Of the mesh: the size of dilatations()' result.
-    unsigned int n_active_cells = 0;
+    /// Of the mesh: the size of dilatations()' result, and its vertices.
+    unsigned int n_active_cells = 0, n_vertices = 0;
+    /// The volume of the cells around each vertex of an owned cell (0 at
+    /// the others), by the triangulation's vertex index.
+    std::vector<double> volume_around;
   };
 } // namespace tissuefem::solid

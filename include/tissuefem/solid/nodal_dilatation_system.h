@@ -126,6 +126,20 @@ namespace tissuefem::solid
              FullMatrix<double>             &K,
              Vector<double>                 &r) const;
 
+    /// The augmented indices of owned cell @p g's rows: its displacement
+    /// dofs, then s and p at its vertices.
+    void
+    local_indices(const unsigned int                    g,
+                  std::vector<types::global_dof_index> &indices) const;
+
+    /// Fills direct and pressure_entry (after the matrix is built).
+    void
+    build_direct_access(const AffineConstraints<double> &constraints);
+
+    /// Fills uu_row and uu_entry for the layout of @p uu.
+    void
+    map_displacement_block(const MatrixType &uu);
+
     const NodalDilatation<dim> &nodal;
     /// Indices into @p nodal's cells of the owned ones.
     std::vector<unsigned int> owned_cells;
@@ -137,14 +151,26 @@ namespace tissuefem::solid
     std::vector<std::array<types::global_dof_index, dim + 1>> s_index;
     std::vector<std::array<double, dim + 1>>                  share;
     /// The sum of V_g J_g around each vertex of the triangulation.
-    mutable std::vector<double> volume_times_J;
-    std::vector<double>         volume_around;
-    MatrixType                  matrix;
+    std::vector<double> volume_times_J;
+    MatrixType          matrix;
     /// The assembled right-hand side (writable ghosts); the rows of s and
     /// p carry the lifting's terms.
     VectorType rhs;
     /// Pressures pi_b: summed over this process's cells, then ghosted.
     VectorType                pressure_sum, pressure;
     AffineConstraints<double> augmented_rows;
+    /// In-place access for owned cells without constrained dofs: per owned
+    /// cell (in owned_cells' order) its rows' local indices (-1 for the
+    /// other cells) and each entry's position in its row; the rows' values.
+    struct
+    {
+      std::vector<int>      row;
+      std::vector<int>      entry;
+      std::vector<double *> row_values;
+    } direct;
+    /// Per cell and vertex, the local index of pi_b in @p pressure.
+    std::vector<std::array<int, dim + 1>> pressure_entry;
+    /// Where the P1 matrix's rows and entries lie here (finish()).
+    std::vector<int> uu_row, uu_entry;
   };
 } // namespace tissuefem::solid

@@ -617,7 +617,12 @@ namespace tissuefem::solid
 
     /// The Jacobian's sparsity and matrix for the current dofs (and the
     /// nodal dilatation's system where it serves), then direct access.
+    /// The nodal dilatation's wide Jacobian (couplings across patches)
+    /// only with @p wide: assemble() asks for it when it first needs it,
+    /// so that runs solving through the system never build it.
     void
-    build_jacobian_matrix();
+    build_jacobian_matrix(const bool wide);
+    /// Whether jacobian_matrix has the nodal dilatation's wide couplings.
+    bool wide_layout = false;
   };
 } // namespace tissuefem::solid
