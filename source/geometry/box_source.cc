@@ -2,11 +2,13 @@
 // a general quadrilateral or hexahedron.
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/tria.h>
 
 #include <tissuefem/base/input_error.h>
 #include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/geometry/source.h>
 
+#include <array>
 #include <cmath>
 
 namespace tissuefem::geometry
@@ -31,6 +33,79 @@ namespace tissuefem::geometry
 
   namespace
   {
+    /**
+     * The box [lower, upper] in @p repetitions hexahedra per direction,
+     * each cut into six tetrahedra around its diagonal from the lower to
+     * the upper corner (Kuhn's split): the tetrahedron of a permutation
+     * (a, b, c) of the directions steps from the lower corner along a,
+     * then b, then c. Every cell is cut alike, so neighbours share their
+     * faces' diagonals and the mesh is conforming.
+     */
+    template <int dim>
+    void
+    six_tetrahedra_box(const std::vector<unsigned int> &repetitions,
+                       const Point<dim>                &lower,
+                       const Point<dim>                &upper,
+                       Triangulation<dim>              &triangulation)
+    {
+      if constexpr (dim == 3)
+        {
+          const unsigned int nx = repetitions[0] + 1, ny = repetitions[1] + 1,
+                             nz = repetitions[2] + 1;
+          std::vector<Point<3>> vertices;
+          vertices.reserve(nx * ny * nz);
+          for (unsigned int k = 0; k < nz; ++k)
+            for (unsigned int j = 0; j < ny; ++j)
+              for (unsigned int i = 0; i < nx; ++i)
+                vertices.emplace_back(
+                  lower[0] + (upper[0] - lower[0]) * i / repetitions[0],
+                  lower[1] + (upper[1] - lower[1]) * j / repetitions[1],
+                  lower[2] + (upper[2] - lower[2]) * k / repetitions[2]);
+          const auto index = [&](const std::array<unsigned int, 3> &c) {
+            return c[0] + nx * (c[1] + ny * c[2]);
+          };
+          const unsigned int order[6][3] = {
+            {0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+          std::vector<CellData<3>> cells;
+          cells.reserve(6 * repetitions[0] * repetitions[1] * repetitions[2]);
+          for (unsigned int k = 0; k + 1 < nz; ++k)
+            for (unsigned int j = 0; j + 1 < ny; ++j)
+              for (unsigned int i = 0; i + 1 < nx; ++i)
+                for (const auto &steps : order)
+                  {
+                    CellData<3>                 cell(4);
+                    std::array<unsigned int, 3> at = {{i, j, k}};
+                    cell.vertices[0]               = index(at);
+                    for (unsigned int s = 0; s < 3; ++s)
+                      {
+                        ++at[steps[s]];
+                        cell.vertices[s + 1] = index(at);
+                      }
+                    // deal.II's tetrahedra have positive volume; odd
+                    // permutations give the other orientation.
+                    const Tensor<1, 3> e1
+                      = vertices[cell.vertices[1]] - vertices[cell.vertices[0]],
+                      e2
+                      = vertices[cell.vertices[2]] - vertices[cell.vertices[0]],
+                      e3
+                      = vertices[cell.vertices[3]] - vertices[cell.vertices[0]];
+                    if (scalar_product(e1, cross_product_3d(e2, e3)) < 0)
+                      std::swap(cell.vertices[1], cell.vertices[2]);
+                    cells.push_back(cell);
+                  }
+          triangulation.create_triangulation(vertices, cells, SubCellData());
+        }
+      else
+        {
+          (void)repetitions;
+          (void)lower;
+          (void)upper;
+          (void)triangulation;
+          Assert(false, ExcInternalError());
+        }
+    }
+
+
     /// Maps the box [lower, upper] onto the cell spanned by 'Corners' with
     /// the multilinear map of deal.II's reference cell.
     template <int dim>
@@ -153,8 +228,11 @@ namespace tissuefem::geometry
         {
           // deal.II 9.4 cannot colorize simplex boxes; give the faces the
           // same ids a colorized hypercube box has.
-          GridGenerator::subdivided_hyper_rectangle_with_simplices(
-            triangulation, repetitions, lower, upper);
+          if (dim == 3 && parameters.tetrahedra_per_hexahedron == 6)
+            six_tetrahedra_box(repetitions, lower, upper, triangulation);
+          else
+            GridGenerator::subdivided_hyper_rectangle_with_simplices(
+              triangulation, repetitions, lower, upper);
           const double tolerance = 1e-10 * lower.distance(upper);
           for (const auto &cell : triangulation.active_cell_iterators())
             for (const auto &face : cell->face_iterators())

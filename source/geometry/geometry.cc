@@ -46,6 +46,18 @@ namespace tissuefem::geometry
                         "For 'box': cells per direction before refinement "
                         "(only the first Dimension values are read).");
       prm.declare_entry(
+        "Tetrahedra per hexahedron",
+        "5",
+        Patterns::Integer(5, 6),
+        "For 'box' with 'Cell type = simplex' in 3D: how each hexahedron of "
+        "the grid is cut. 5: deal.II's split (a central tetrahedron and four "
+        "corners, alternating between neighbours so that the faces match). "
+        "6: six tetrahedra around the diagonal from each cell's lower to its "
+        "upper corner (Kuhn's split; the same in every cell, so that the "
+        "faces match), the split of SOFA's benchmark beams: a grid of 75 x "
+        "15 x 15 cells gives their 101,250 tetrahedra. Ignored in 2D (two "
+        "triangles per quadrilateral).");
+      prm.declare_entry(
         "Grading",
         "1",
         Patterns::Double(1, 1e6),
@@ -129,19 +141,20 @@ namespace tissuefem::geometry
   GeometryParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Geometry");
-    source                 = prm.get("Source");
-    cell_type              = prm.get("Cell type");
-    lower_corner           = prm.get("Lower corner");
-    upper_corner           = prm.get("Upper corner");
-    subdivisions           = prm.get("Subdivisions");
-    corners                = prm.get("Corners");
-    grading                = prm.get_double("Grading");
-    graded_toward          = prm.get("Graded toward");
-    mesh_file              = prm.get("Mesh file");
-    scale                  = prm.get_double("Scale");
-    global_refinements     = prm.get_integer("Global refinements");
-    boundary_id_predicates = prm.get("Boundary id predicates");
-    material_id_predicates = prm.get("Material id predicates");
+    source                    = prm.get("Source");
+    cell_type                 = prm.get("Cell type");
+    lower_corner              = prm.get("Lower corner");
+    upper_corner              = prm.get("Upper corner");
+    subdivisions              = prm.get("Subdivisions");
+    corners                   = prm.get("Corners");
+    grading                   = prm.get_double("Grading");
+    tetrahedra_per_hexahedron = prm.get_integer("Tetrahedra per hexahedron");
+    graded_toward             = prm.get("Graded toward");
+    mesh_file                 = prm.get("Mesh file");
+    scale                     = prm.get_double("Scale");
+    global_refinements        = prm.get_integer("Global refinements");
+    boundary_id_predicates    = prm.get("Boundary id predicates");
+    material_id_predicates    = prm.get("Material id predicates");
     prm.leave_subsection();
     require(scale > 0, "Geometry/Scale", "must be > 0");
   }

@@ -26,9 +26,11 @@ namespace tissuefem::geometry
     void
     resolve_relative_to(const std::string &directory);
 
-    std::string  source;    ///< a registered Source (geometry/source.h)
-    std::string  cell_type; ///< "hypercube" or "simplex"
-    std::string  lower_corner, upper_corner, subdivisions, corners;
+    std::string source;    ///< a registered Source (geometry/source.h)
+    std::string cell_type; ///< "hypercube" or "simplex"
+    std::string lower_corner, upper_corner, subdivisions, corners;
+    /// 'Tetrahedra per hexahedron' of a simplex box in 3D: 5 or 6
+    unsigned int tetrahedra_per_hexahedron = 5;
     double       grading;       ///< 'Grading': finer at graded_toward
     std::string  graded_toward; ///< 'Graded toward': a point, or empty
     std::string  mesh_file;
