@@ -44,22 +44,23 @@ namespace tissuefem::solid
   {
     if (dim < 2)
       return false;
+    bool fits = true;
     for (const auto &line : constraints.get_lines())
-      if (!line.entries.empty())
-        return false;
+      fits = fits && line.entries.empty();
     // dof(node k, component c) = dim v + c for some vertex number v.
     for (const auto &cell : nodal.cells)
       for (unsigned int i = 0; i < cell.dofs.size(); ++i)
         {
           const auto [node, component] = cell.node_component[i];
-          if (cell.dofs[i] % dim != component)
-            return false;
+          fits = fits && cell.dofs[i] % dim == component;
           for (unsigned int j = 0; j < cell.dofs.size(); ++j)
-            if (cell.node_component[j].first == node
-                && cell.dofs[j] / dim != cell.dofs[i] / dim)
-              return false;
+            fits = fits
+                   && (cell.node_component[j].first != node
+                       || cell.dofs[j] / dim == cell.dofs[i] / dim);
         }
-    return true;
+    // Every process must choose alike: the system is built collectively.
+    return Utilities::MPI::min(fits ? 1 : 0, parallel_tools::communicator())
+           == 1;
   }
 
 
@@ -152,7 +153,7 @@ namespace tissuefem::solid
         direct.row_values[r] = values;
       }
     direct.row.assign(owned_cells.size() * n_a, -1);
-    direct.entry.assign(owned_cells.size() * n_a * n_a, -1);
+    direct.entry.assign(owned_cells.size() * n_a * n_a, 0);
     const auto &ghosts = pressure.trilinos_vector().Map();
     pressure_entry.resize(cells.size());
     for (unsigned int g = 0; g < cells.size(); ++g)
@@ -171,8 +172,8 @@ namespace tissuefem::solid
         local_indices(owned_cells[o], indices);
         for (unsigned int i = 0; i < n_a; ++i)
           {
-            const int r             = owned.index_within_set(indices[i]);
-            direct.row[o * n_a + i] = r;
+            const int r = owned.index_within_set(indices[i]);
+            direct.row[std::size_t(o) * n_a + i] = r;
             int     length;
             double *values;
             int    *columns;
@@ -182,8 +183,10 @@ namespace tissuefem::solid
                 const int column = M.ColMap().LID(
                   static_cast<TrilinosWrappers::types::int_type>(indices[j]));
                 const int *found = std::find(columns, columns + length, column);
-                AssertThrow(found != columns + length, ExcInternalError());
-                direct.entry[(o * n_a + i) * n_a + j] = found - columns;
+                AssertThrow(found != columns + length && length < 65536,
+                            ExcInternalError());
+                direct.entry[(std::size_t(o) * n_a + i) * n_a + j]
+                  = found - columns;
               }
           }
       }
@@ -321,7 +324,7 @@ namespace tissuefem::solid
     };
     auto copier = [&](const Copy &copy) {
       const unsigned int n_a = copy.indices.size();
-      const int         *row = &direct.row[copy.o * n_a];
+      const int         *row = &direct.row[std::size_t(copy.o) * n_a];
       if (!jacobian)
         {
           // The displacement rows only.
@@ -339,8 +342,9 @@ namespace tissuefem::solid
         for (unsigned int i = 0; i < n_a; ++i)
           {
             rhs_values[row[i]] += copy.r(i);
-            double    *values = direct.row_values[row[i]];
-            const int *entry  = &direct.entry[(copy.o * n_a + i) * n_a];
+            double              *values = direct.row_values[row[i]];
+            const std::uint16_t *entry
+              = &direct.entry[(std::size_t(copy.o) * n_a + i) * n_a];
             for (unsigned int j = 0; j < n_a; ++j)
               values[entry[j]] += copy.K(i, j);
           }
@@ -515,12 +519,14 @@ namespace tissuefem::solid
     std::memcpy(into, b.trilinos_vector()[0], n_owned_u * sizeof(double));
     // b = -R: the rows of s and p take the lifting's terms negated too,
     // once (a later solve with a kept factorization has none).
+    AssertDimension(static_cast<unsigned int>(x.trilinos_vector().MyLength()),
+                    n_owned_u);
     for (unsigned int i = n_owned_u; i < B.locally_owned_size(); ++i)
       into[i] = -lifted[i];
+    solver.solve(matrix, X, B, refactorize);
     double *rest = rhs.trilinos_vector()[0];
     for (unsigned int i = n_owned_u; i < B.locally_owned_size(); ++i)
       rest[i] = 0;
-    solver.solve(matrix, X, B, refactorize);
     std::memcpy(x.trilinos_vector()[0],
                 X.trilinos_vector()[0],
                 n_owned_u * sizeof(double));

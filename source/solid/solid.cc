@@ -65,6 +65,7 @@ namespace tissuefem::solid
     discretization.distribute(&boundary_conditions,
                               held ? &held->vertices : nullptr);
     const auto &dof_handler = discretization.dof_handler;
+    nodal_system.reset(); // refers to nodal
     nodal.reset();
     if (materials.nodal_dilatation_formulation())
       nodal = std::make_unique<NodalDilatation<dim>>(discretization);

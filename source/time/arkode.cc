@@ -145,6 +145,8 @@ namespace tissuefem::time
     initialize(Context &c, State &state) override
     {
       context = &c;
+      // Its Newton systems multiply with the Jacobian itself (Stiffness).
+      c.solid.solve_only_through_operators(false, c.linear_solver);
       if (!context_ready)
         {
           MPI_Comm comm = parallel_tools::communicator();

@@ -59,6 +59,8 @@ namespace tissuefem::time
   RadauIIA::initialize(Context &c, State &state)
   {
     context = &c;
+    // Its stage systems are built from the Jacobian itself (Stiffness).
+    c.solid.solve_only_through_operators(false, c.linear_solver);
     set_up_vectors(state.u);
     derivative(state.time, state.u, state.v, f0u, f0v);
     state.a = f0v;

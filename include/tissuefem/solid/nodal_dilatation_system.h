@@ -14,6 +14,7 @@
 #include <tissuefem/solvers/linear_solver.h>
 
 #include <array>
+#include <cstdint>
 #include <tuple>
 #include <vector>
 
@@ -164,9 +165,9 @@ namespace tissuefem::solid
     /// other cells) and each entry's position in its row; the rows' values.
     struct
     {
-      std::vector<int>      row;
-      std::vector<int>      entry;
-      std::vector<double *> row_values;
+      std::vector<int>           row;
+      std::vector<std::uint16_t> entry; ///< rows are short (< 2^16 entries)
+      std::vector<double *>      row_values;
     } direct;
     /// Per cell and vertex, the local index of pi_b in @p pressure.
     std::vector<std::array<int, dim + 1>> pressure_entry;
