@@ -150,7 +150,7 @@ namespace tissuefem::materials
         "Jacobian couples each cell to the cells around its vertices' "
         "neighbours, and with a direct solver the implicit one-step methods "
         "solve it as a system with P1's stencil and the vertices' "
-        "dilatation and pressure as extra unknowns (about 3 times plain "
+        "dilatation and pressure as extra unknowns (3 to 4 times plain "
         "P1's cost); 'edge length': Jeffrey's "
         "form (eqs 19-31), the element energy written through the squared "
         "edge lengths of linear simplices (P1 triangles/tetrahedra only, "
