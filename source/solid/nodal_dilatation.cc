@@ -160,28 +160,43 @@ namespace tissuefem::solid
 
   template <int dim>
   std::vector<double>
+  NodalDilatation<dim>::volume_times_J(const std::vector<double> &J) const
+  {
+    std::vector<double> sums(volume_around.size(), 0.);
+    for (unsigned int g = 0; g < cells.size(); ++g)
+      for (const unsigned int v : cells[g].vertex)
+        sums[v] += cells[g].volume * J[g];
+    return sums;
+  }
+
+
+  template <int dim>
+  double
+  NodalDilatation<dim>::vertex_average(const Cell                &cell,
+                                       const std::vector<double> &sums) const
+  {
+    double theta = 0;
+    for (const unsigned int v : cell.vertex)
+      theta += sums[v] / volume_around[v] / (dim + 1);
+    return theta;
+  }
+
+
+  template <int dim>
+  std::vector<double>
   NodalDilatation<dim>::dilatations(const VectorType &u) const
   {
-    // Jbar_e = sum_{b in e} J_b / (d + 1), J_b = sum_{g at b} V_g J_g / V_b:
-    // one pass over the cells and one over the owned ones (the same as
+    // One pass over the cells and one over the owned ones (the same as
     // sum_g c_g J_g over the patch, in O(cells)).
-    std::vector<double> volume_times_J(volume_around.size(), 0.);
-    for (const Cell &cell : cells)
-      {
-        const double J = determinant(deformation_gradient(cell, u));
-        for (const unsigned int v : cell.vertex)
-          volume_times_J[v] += cell.volume * J;
-      }
-    std::vector<double> result(n_active_cells,
+    std::vector<double> J(cells.size());
+    for (unsigned int g = 0; g < cells.size(); ++g)
+      J[g] = determinant(deformation_gradient(cells[g], u));
+    const std::vector<double> sums = volume_times_J(J);
+    std::vector<double>       result(n_active_cells,
                                std::numeric_limits<double>::quiet_NaN());
     for (const Patch &patch : patches)
-      {
-        const Cell &cell  = cells[patch.cell];
-        double      theta = 0;
-        for (const unsigned int v : cell.vertex)
-          theta += volume_times_J[v] / volume_around[v] / (dim + 1);
-        result[cell.active_index] = theta;
-      }
+      result[cells[patch.cell].active_index]
+        = vertex_average(cells[patch.cell], sums);
     return result;
   }
 

@@ -6,6 +6,7 @@
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 #include <deal.II/lac/vector.h>
 
+#include <tissuefem/solid/matrix_rows.h>
 #include <tissuefem/solid/nodal_dilatation_system.h>
 
 #include <algorithm>
@@ -115,12 +116,11 @@ namespace tissuefem::solid
                                                relevant,
                                                parallel_tools::communicator());
     std::vector<types::global_dof_index> indices;
-    for (unsigned int g = 0; g < cells.size(); ++g)
-      if (cells[g].owned)
-        {
-          local_indices(g, indices);
-          augmented_rows.add_entries_local_to_global(indices, sparsity, false);
-        }
+    for (const unsigned int g : owned_cells)
+      {
+        local_indices(g, indices);
+        augmented_rows.add_entries_local_to_global(indices, sparsity, false);
+      }
     sparsity.compress();
     matrix.reinit(sparsity);
     rhs.reinit(owned, relevant, parallel_tools::communicator(), true);
@@ -139,19 +139,10 @@ namespace tissuefem::solid
     // right-hand side's arrays, for cells whose displacement dofs are all
     // owned and free (then so are their vertices' s and p): those add in
     // place, the others through deal.II's constraints.
-    const auto             &cells = nodal.cells;
-    const Epetra_CrsMatrix &M     = matrix.trilinos_matrix();
-    const unsigned int      n_a
+    const auto        &cells = nodal.cells;
+    const unsigned int n_a
       = cells.empty() ? 0 : cells[0].dofs.size() + 2 * (dim + 1);
-    direct.row_values.resize(M.NumMyRows());
-    for (int r = 0; r < M.NumMyRows(); ++r)
-      {
-        int     length;
-        double *values;
-        int    *columns;
-        M.ExtractMyRowView(r, length, values, columns);
-        direct.row_values[r] = values;
-      }
+    direct.row_values = row_value_pointers(matrix);
     direct.row.assign(owned_cells.size() * n_a, -1);
     direct.entry.assign(owned_cells.size() * n_a * n_a, 0);
     const auto &ghosts = pressure.trilinos_vector().Map();
@@ -174,19 +165,11 @@ namespace tissuefem::solid
           {
             const int r = owned.index_within_set(indices[i]);
             direct.row[std::size_t(o) * n_a + i] = r;
-            int     length;
-            double *values;
-            int    *columns;
-            M.ExtractMyRowView(r, length, values, columns);
             for (unsigned int j = 0; j < n_a; ++j)
               {
-                const int column = M.ColMap().LID(
-                  static_cast<TrilinosWrappers::types::int_type>(indices[j]));
-                const int *found = std::find(columns, columns + length, column);
-                AssertThrow(found != columns + length && length < 65536,
-                            ExcInternalError());
-                direct.entry[(std::size_t(o) * n_a + i) * n_a + j]
-                  = found - columns;
+                const int position = entry_in_row(matrix, r, indices[j]);
+                AssertThrow(position < 65536, ExcInternalError());
+                direct.entry[(std::size_t(o) * n_a + i) * n_a + j] = position;
               }
           }
       }
@@ -235,17 +218,14 @@ namespace tissuefem::solid
     // F, J, J F^{-T} of every cell here, and the vertices' dilatations.
     std::vector<Tensor<2, dim>> F(n), cofactor(n);
     std::vector<double>         J(n);
-    const auto                 &volume_around = nodal.volume_around;
-    volume_times_J.assign(volume_around.size(), 0.);
     for (unsigned int g = 0; g < n; ++g)
       {
         F[g] = nodal.deformation_gradient(cells[g], u);
         J[g] = determinant(F[g]);
         if (J[g] != 0)
           cofactor[g] = J[g] * transpose(invert(F[g]));
-        for (const unsigned int v : cells[g].vertex)
-          volume_times_J[v] += cells[g].volume * J[g];
       }
+    const std::vector<double> sums = nodal.volume_times_J(J);
 
     // First pass, per owned cell: Psi-hat's derivatives at Jbar, and the
     // pressures pi_b they give the vertices (summed over the processes).
@@ -265,10 +245,8 @@ namespace tissuefem::solid
             const auto &cell = cells[e];
             if (!cell.owned)
               continue;
-            double theta = 0;
-            for (const unsigned int v : cell.vertex)
-              theta += volume_times_J[v] / volume_around[v] / (dim + 1);
-            const auto &material = materials.material(cell.material_id);
+            const double theta    = nodal.vertex_average(cell, sums);
+            const auto  &material = materials.material(cell.material_id);
             terms[e].defined
               = theta / J[e] > 0
                 && (material.admits_inversion() || (J[e] > 0 && theta > 0));

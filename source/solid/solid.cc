@@ -8,6 +8,7 @@
 #include <tissuefem/materials/kinematics.h>
 #include <tissuefem/materials/tangent_projection.h>
 #include <tissuefem/solid/edge_length_element.h>
+#include <tissuefem/solid/matrix_rows.h>
 #include <tissuefem/solid/mean_dilatation.h>
 #include <tissuefem/solid/quantities.h>
 #include <tissuefem/solid/solid.h>
@@ -182,21 +183,12 @@ namespace tissuefem::solid
     const unsigned int n       = cache.n_dofs;
     const unsigned int n_cells = cache.cells().size();
     const auto        &owned   = discretization.locally_owned;
-    const auto        &matrix  = jacobian_matrix.trilinos_matrix();
     const auto        &ghosts  = ghosted_u.trilinos_vector().Map();
     access.ghost_index.resize(n_cells * n);
     access.direct.assign(n_cells, false);
     access.row.assign(n_cells * n, -1);
     access.entry.assign(n_cells * n * n, -1);
-    access.row_values.resize(matrix.NumMyRows());
-    for (int r = 0; r < matrix.NumMyRows(); ++r)
-      {
-        int     length;
-        double *values;
-        int    *columns;
-        matrix.ExtractMyRowView(r, length, values, columns);
-        access.row_values[r] = values;
-      }
+    access.row_values = row_value_pointers(jacobian_matrix);
     for (unsigned int c = 0; c < n_cells; ++c)
       {
         const auto *dofs   = cache.dofs(c);
@@ -213,21 +205,9 @@ namespace tissuefem::solid
         if (!direct)
           continue;
         for (unsigned int i = 0; i < n; ++i)
-          {
-            const int r = access.row[c * n + i];
-            int       length;
-            double   *values;
-            int      *columns;
-            matrix.ExtractMyRowView(r, length, values, columns);
-            for (unsigned int j = 0; j < n; ++j)
-              {
-                const int column = matrix.ColMap().LID(
-                  static_cast<TrilinosWrappers::types::int_type>(dofs[j]));
-                const int *found = std::find(columns, columns + length, column);
-                Assert(found != columns + length, ExcInternalError());
-                access.entry[(c * n + i) * n + j] = found - columns;
-              }
-          }
+          for (unsigned int j = 0; j < n; ++j)
+            access.entry[(c * n + i) * n + j]
+              = entry_in_row(jacobian_matrix, access.row[c * n + i], dofs[j]);
         access.direct[c] = true;
       }
     // Cells by ghosted entry, for active regions (cells_touching).

@@ -96,6 +96,17 @@ namespace tissuefem::solid
     Tensor<2, dim>
     deformation_gradient(const Cell &cell, const VectorType &u) const;
 
+    /// sum_g V_g J_g over the cells around each vertex (by the
+    /// triangulation's vertex index), for the cells' @p J (as cells).
+    std::vector<double>
+    volume_times_J(const std::vector<double> &J) const;
+
+    /// Jbar of an owned @p cell, sum_{b in cell} J_b / (d + 1) with J_b =
+    /// sum_g V_g J_g / V_b from volume_times_J(): the patch's average in
+    /// O(1) per cell.
+    double
+    vertex_average(const Cell &cell, const std::vector<double> &sums) const;
+
     /**
      * The patch of an owned cell e, fixed per mesh: the cells g sharing a
      * vertex with e, with c_g = dJbar_e/dJ_g = sum over the vertices b that

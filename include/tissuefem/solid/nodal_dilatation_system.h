@@ -151,9 +151,7 @@ namespace tissuefem::solid
     /// n_vertices further), and V_g / V_b.
     std::vector<std::array<types::global_dof_index, dim + 1>> s_index;
     std::vector<std::array<double, dim + 1>>                  share;
-    /// The sum of V_g J_g around each vertex of the triangulation.
-    std::vector<double> volume_times_J;
-    MatrixType          matrix;
+    MatrixType                                                matrix;
     /// The assembled right-hand side (writable ghosts); the rows of s and
     /// p carry the lifting's terms.
     VectorType rhs;
