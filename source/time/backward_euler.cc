@@ -55,6 +55,12 @@ namespace tissuefem::time
       prm.leave_subsection();
     }
 
+    bool
+    takes_rayleigh_damping() const override
+    {
+      return true;
+    }
+
     void
     initialize(Context &c, State &state) override
     {

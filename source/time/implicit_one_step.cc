@@ -59,6 +59,8 @@ namespace tissuefem::time
     auto       start = std::chrono::steady_clock::now();
     solid.implicit_residual_lifting(
       u, u_tilde, mass_coefficient, time, residual);
+    if (damped)
+      residual += shift;
     report.assembly_seconds += seconds_since(start);
     ++report.jacobian_evaluations;
     residual *= -1.;
@@ -96,10 +98,8 @@ namespace tissuefem::time
     auto      &solid = context->solid;
     VectorType plain(guess);
     solid.apply_dirichlet_values(time, plain);
-    const double lifted_energy
-      = solid.implicit_energy(lifted, u_tilde, mass_coefficient, time);
-    const double plain_energy
-      = solid.implicit_energy(plain, u_tilde, mass_coefficient, time);
+    const double lifted_energy = energy(lifted, mass_coefficient, time);
+    const double plain_energy  = energy(plain, mass_coefficient, time);
     if (lifted_energy <= plain_energy || !std::isfinite(plain_energy))
       return motion;
     // The Jacobian was assembled at the guess: still current if the
@@ -172,12 +172,12 @@ namespace tissuefem::time
                            StepReport  &report)
   {
     auto        &solid = context->solid;
-    const double c     = mass_coefficient(h);
     const double t_new = state.time + h;
     if (next.u.size() != state.u.size())
       solid.initialize_vector(next.u);
     predict(state, h, u_tilde, next.u);
     solid.begin_step(state.u, state.time);
+    const double c = damp(state, h, mass_coefficient(h), t_new);
     // The three-field element's cell unknowns ('Newton solver/Mean
     // dilatation update'): Newton updates them with u within this step.
     solid::IterationUnknowns *unknowns = context->newton.three_field_dilatation
@@ -208,13 +208,11 @@ namespace tissuefem::time
           unknowns->set_step_length(alpha);
         };
       }
-    std::function<double(const VectorType &)> energy;
+    std::function<double(const VectorType &)> step_energy;
     if (!unknowns)
-      energy = [&](const VectorType &x) {
-        return solid.implicit_energy(x, u_tilde, c, t_new);
-      };
-    const auto residual = [&](const VectorType &x, VectorType &r, bool J) {
-      solid.implicit_residual(x, u_tilde, c, t_new, r, J);
+      step_energy = [&](const VectorType &x) { return energy(x, c, t_new); };
+    const auto step_residual = [&](const VectorType &x, VectorType &r, bool J) {
+      residual(x, c, t_new, r, J);
     };
     const auto solve = [&, first = 0.](VectorType       &x,
                                        const VectorType &b,
@@ -232,22 +230,22 @@ namespace tissuefem::time
                            std::min(0.1, 0.5 * norm / first));
     };
     const auto newton = [&](const bool lifted_first) {
-      return context->newton.trust_region && energy
+      return context->newton.trust_region && step_energy
                ? solvers::solve_trust_region(
                  context->newton,
                  next.u,
-                 residual,
+                 step_residual,
                  solve,
                  [&](VectorType &Jv, const VectorType &v) {
                    solid.jacobian().vmult(Jv, v);
                  },
-                 energy,
+                 step_energy,
                  solid.length_scale())
                : solvers::solve_newton(context->newton,
                                        next.u,
-                                       residual,
+                                       step_residual,
                                        solve,
-                                       energy,
+                                       step_energy,
                                        solid.length_scale(),
                                        lifted_first,
                                        unknowns ? &hooks : nullptr);
@@ -293,8 +291,86 @@ namespace tissuefem::time
     // Newton leaves constrained entries alone; set hanging nodes (and the
     // prescribed values, unchanged) in the state.
     solid.apply_dirichlet_values(t_new, next.u);
-    finish(state, u_tilde, h, next);
+    finish(state, rates_u_tilde(), h, next);
+    report.damping_work += damping_work(state, next, h, c);
     return {};
+  }
+
+
+  double
+  ImplicitOneStep::damp(const State &old_state,
+                        const double h,
+                        const double c,
+                        const double t_new)
+  {
+    const double alpha = context->time.rayleigh_mass;
+    const double beta  = context->time.rayleigh_stiffness;
+    damped             = takes_rayleigh_damping() && (alpha > 0 || beta > 0);
+    if (!damped)
+      return c;
+    undamped_u_tilde         = u_tilde;
+    const double c_with_mass = c + alpha / h;
+    // u_tilde' = (c u_tilde + alpha/h u_n) / (c + alpha/h)
+    u_tilde.sadd(c / c_with_mass, alpha / h / c_with_mass, old_state.u);
+    const double kappa = 1 + beta / h;
+    if (beta > 0)
+      {
+        // r(u_n) at t_{n+1}: the solid's residual without the mass term.
+        context->solid.implicit_residual(
+          old_state.u, u_tilde, 0., t_new, shift, false);
+        shift *= -beta / (h * kappa);
+      }
+    else
+      shift.reinit(old_state.u);
+    return c_with_mass / kappa;
+  }
+
+
+  double
+  ImplicitOneStep::damping_work(const State &old_state,
+                                const State &new_state,
+                                const double h,
+                                const double c_damped)
+  {
+    if (!damped)
+      return 0;
+    // The step's equation with the damping force f_d written out,
+    // c M (u - u_tilde) + f_d + r(u) = 0, and the solved one divided by
+    // kappa, c' M (u - u_tilde') + r(u) + g = 0, give on the free rows
+    // f_d = g + M (c' (u - u_tilde') - c (u - u_tilde)).
+    const double c = mass_coefficient(h);
+    VectorType   combination(new_state.u), force, step(new_state.u);
+    combination.sadd(c_damped - c, -c_damped, u_tilde);
+    combination.add(c, undamped_u_tilde);
+    context->solid.initialize_vector(force);
+    context->solid.mass_matrix().vmult(force, combination);
+    force += shift;
+    context->solid.zero_constrained_entries(force);
+    step -= old_state.u;
+    return force * step;
+  }
+
+
+  void
+  ImplicitOneStep::residual(const VectorType &u,
+                            const double      c,
+                            const double      time,
+                            VectorType       &r,
+                            const bool        with_jacobian)
+  {
+    context->solid.implicit_residual(u, u_tilde, c, time, r, with_jacobian);
+    if (damped)
+      r += shift;
+  }
+
+
+  double
+  ImplicitOneStep::energy(const VectorType &u,
+                          const double      c,
+                          const double      time)
+  {
+    const double e = context->solid.implicit_energy(u, u_tilde, c, time);
+    return damped ? e + shift * u : e;
   }
 
 

@@ -83,6 +83,12 @@ namespace tissuefem::time
       return interval == 1;
     }
 
+    bool
+    takes_rayleigh_damping() const override
+    {
+      return true;
+    }
+
     void
     mesh_changed() override
     {
@@ -130,15 +136,16 @@ namespace tissuefem::time
       auto        &solid = context->solid;
       const double t_new = state.time + h;
       predict(state, h, u_tilde, next.u);
+      double c = mass_coefficient(h);
       try
         {
+          c = damp(state, h, c, t_new);
           // At u_n with its old prescribed values, one iteration with the
           // Jacobian M/h^2 + K(u_n); a kept factorization serves while it
           // is recent and of this step size (see 'Factorization interval').
           const bool fresh
             = std::abs(h - factorized_step) > 1e-12 * h || age + 1 >= interval;
-          lift_boundary_increment(
-            mass_coefficient(h), t_new, next.u, report, fresh);
+          lift_boundary_increment(c, t_new, next.u, report, fresh);
           age             = fresh ? 0 : age + 1;
           factorized_step = h;
         }
@@ -161,7 +168,8 @@ namespace tissuefem::time
           return failure;
         }
       next.time = t_new;
-      finish(state, u_tilde, h, next);
+      finish(state, rates_u_tilde(), h, next);
+      report.damping_work += damping_work(state, next, h, c);
       return {};
     }
 

@@ -79,6 +79,28 @@ namespace tissuefem::time
                       "1/50 s); > 0. The end of a run reports the share of "
                       "steps within it. With 'Time step' equal to this, the "
                       "simulation keeps up with real time.");
+    prm.declare_entry(
+      "Rayleigh mass damping",
+      "0",
+      Patterns::Double(0),
+      "alpha of Rayleigh damping, the damping force D v with D = alpha M + "
+      "beta K (1/s if SI; >= 0; SOFA's rayleighMass, FEBio's and Abaqus's "
+      "alpha). A mode of angular frequency omega is damped with the ratio "
+      "zeta = alpha/(2 omega) + beta omega/2: the mass term damps slow motion "
+      "(sagging, swinging), the stiffness term fast motion. Backward Euler "
+      "and linearly implicit Euler only (the run is refused otherwise), "
+      "which solve it with the step (time/implicit_one_step.h); 0 "
+      "(default): none.");
+    prm.declare_entry(
+      "Rayleigh stiffness damping",
+      "0",
+      Patterns::Double(0),
+      "beta of Rayleigh damping (s if SI; >= 0; SOFA's rayleighStiffness). "
+      "The stiffness term of the damping force over a step from u_n to "
+      "u_{n+1} is beta (f(u_{n+1}) - f(u_n))/dt, with f the internal and "
+      "contact forces minus the loads at t_{n+1}: beta K v for a linear "
+      "body, and for linearly implicit Euler exactly SOFA's beta K(u_n) "
+      "v_{n+1}. Costs one residual evaluation per step. 0 (default): none.");
     IntegratorRegistry::instance().declare_parameters(prm);
     prm.leave_subsection();
   }
@@ -97,10 +119,20 @@ namespace tissuefem::time
     optimal_iterations = prm.get_integer("Optimal Newton iterations");
     extrapolate        = prm.get("Predictor") == "extrapolation";
     real_time_budget   = prm.get_double("Real-time budget");
+    rayleigh_mass      = prm.get_double("Rayleigh mass damping");
+    rayleigh_stiffness = prm.get_double("Rayleigh stiffness damping");
     prm.leave_subsection();
     require(std::isfinite(real_time_budget) && real_time_budget > 0,
             "Time integration/Real-time budget",
             "must be > 0 (seconds), got " + std::to_string(real_time_budget));
+    require(std::isfinite(rayleigh_mass) && rayleigh_mass >= 0,
+            "Time integration/Rayleigh mass damping",
+            "must be finite and >= 0 (1/s), got "
+              + std::to_string(rayleigh_mass));
+    require(std::isfinite(rayleigh_stiffness) && rayleigh_stiffness >= 0,
+            "Time integration/Rayleigh stiffness damping",
+            "must be finite and >= 0 (s), got "
+              + std::to_string(rayleigh_stiffness));
     require(std::isfinite(time_step) && time_step > 0,
             "Time integration/Time step",
             "must be > 0, got " + std::to_string(time_step));

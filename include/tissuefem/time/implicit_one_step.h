@@ -168,6 +168,66 @@ namespace tissuefem::time
       return {};
     }
 
+    /**
+     * Rayleigh damping D = alpha M + beta K ('Rayleigh mass damping',
+     * 'Rayleigh stiffness damping'), for the methods whose velocity is
+     * v_{n+1} = (u_{n+1} - u_n)/h (takes_rayleigh_damping()). Their damped
+     * step,
+     *
+     *   c M (u - u_tilde) + alpha/h M (u - u_n) + r(u) + beta/h (r(u) -
+     *   r(u_n)) = 0,
+     *
+     * with r(u) = f_int(u) + contact - f_ext(t_{n+1}), is, divided by
+     * kappa = 1 + beta/h,
+     *
+     *   c' M (u - u_tilde') + r(u) + g = 0,  c' = (c + alpha/h)/kappa,
+     *   u_tilde' = (c u_tilde + alpha/h u_n)/(c + alpha/h),
+     *   g = -beta/(h kappa) r(u_n):
+     *
+     * the undamped step with another mass coefficient and u_tilde and a
+     * constant shift g, so that its Jacobian c' M + K has the form the
+     * solid assembles and solves (doc/user_guide.md, "Rayleigh
+     * damping"). Call after predict() and Operators::begin_step(): sets
+     * u_tilde to u_tilde' (keeping u_tilde for finish(), see
+     * rates_u_tilde()) and the shift (evaluating r(u_n)), and returns c'.
+     * Without damping it returns @p c and changes nothing.
+     */
+    double
+    damp(const State &old_state,
+         const double h,
+         const double c,
+         const double t_new);
+
+    /// The u_tilde of the undamped step (finish() takes it).
+    const VectorType &
+    rates_u_tilde() const
+    {
+      return damped ? undamped_u_tilde : u_tilde;
+    }
+
+    /// The energy the damping force took out over the step from
+    /// @p old_state to @p new_state over @p h (energy units, from the
+    /// step's equations: f_d = -c M (u - u_tilde) - r(u) on the free
+    /// rows), with @p c_damped what damp() returned; 0 without damping.
+    double
+    damping_work(const State &old_state,
+                 const State &new_state,
+                 const double h,
+                 const double c_damped);
+
+    /// The solid's implicit residual (with @p with_jacobian, its Jacobian)
+    /// plus the damping shift g.
+    void
+    residual(const VectorType &u,
+             const double      c,
+             const double      time,
+             VectorType       &r,
+             const bool        with_jacobian);
+
+    /// The solid's implicit energy plus g . u (whose gradient is the shift).
+    double
+    energy(const VectorType &u, const double c, const double time);
+
     /// u_tilde of the step being attempted (see predict()).
     VectorType u_tilde;
 
@@ -183,9 +243,14 @@ namespace tissuefem::time
 
     /// The mass coefficient of the factorization the linear solver keeps
     /// for the next step's lifting (-1: none usable).
-    double       kept_coefficient = -1;
-    double       step_size        = 0;
-    double       failed_step      = std::numeric_limits<double>::infinity();
-    unsigned int last_iterations  = 0;
+    double kept_coefficient = -1;
+    /// Whether the step being attempted is damped, its undamped u_tilde
+    /// and the shift g (damp()).
+    bool         damped = false;
+    VectorType   undamped_u_tilde;
+    VectorType   shift;
+    double       step_size       = 0;
+    double       failed_step     = std::numeric_limits<double>::infinity();
+    unsigned int last_iterations = 0;
   };
 } // namespace tissuefem::time

@@ -35,6 +35,10 @@ namespace tissuefem::time
     unsigned int optimal_iterations;
     /// Wall-clock seconds a step may take in an interactive loop.
     double real_time_budget;
+    /// Rayleigh damping D = alpha M + beta K ('Rayleigh mass damping',
+    /// 1/time units; 'Rayleigh stiffness damping', time units); 0: none.
+    double rayleigh_mass      = 0;
+    double rayleigh_stiffness = 0;
   };
 
   /// The state of the body at one instant: displacement, velocity and
@@ -152,6 +156,15 @@ namespace tissuefem::time
     restore_scalars(const std::vector<double> &scalars)
     {
       (void)scalars;
+    }
+
+    /// Whether the integrator applies 'Rayleigh mass damping' and
+    /// 'Rayleigh stiffness damping' (a run with either non-zero and an
+    /// integrator that does not is refused).
+    virtual bool
+    takes_rayleigh_damping() const
+    {
+      return false;
     }
 
     /// What the integrator did over the whole run, for the screen (several
