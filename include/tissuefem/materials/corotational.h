@@ -87,6 +87,106 @@ namespace tissuefem::materials
       return false;
     }
 
+    bool
+    has_hand_coded_tangent() const override
+    {
+      return true;
+    }
+
+  protected:
+    /**
+     * P as first_piola_kirchhoff() and A = dP/dF in closed form, instead of
+     * AD through every iteration of the polar decomposition (measured: 1.7
+     * s of a 2.1 s step on SOFA's 101,250-tetrahedron beam). Differentiating
+     * P = 2 mu (F - R) + lambda (tr S - d) R,
+     *
+     *   dP = 2 mu (dF - dR) + lambda (R : dF) R + lambda (tr S - d) dR,
+     *
+     * since d tr S = d tr(R^T F) = R : dF (the term tr(dR^T F) = -tr(W S)
+     * vanishes: W = R^T dR is skew, S symmetric). The skew part of R^T dF =
+     * W S + dS gives W S + S W = R^T dF - dF^T R =: M. In 3D, with W = [w]x,
+     * W S + S W = [(tr S I - S) w]x, so w = (tr S I - S)^{-1} axial(M); in
+     * 2D W = w J (J the rotation by 90 degrees) and W S + S W = w tr S J, so
+     * w = M_10 / tr S (McAdams et al. 2011 derive dR so). tr S I - S is
+     * positive definite where det F > 0, the model's domain.
+     */
+    void
+    hand_coded_stress_and_tangent(const Tensor<2, dim> &F,
+                                  const Tensor<1, dim> &fibre,
+                                  Tensor<2, dim>       &P,
+                                  Tensor<4, dim>       &A) const override
+    {
+      P = first_piola_kirchhoff(F, fibre);
+      SmallMatrix<dim, double> matrix;
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = 0; j < dim; ++j)
+          matrix[i][j] = F[i][j];
+      const SmallMatrix<dim, double> R       = rotation(matrix);
+      double                         trace_S = 0;
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = 0; j < dim; ++j)
+          trace_S += R[i][j] * F[i][j];
+      const double rotation_factor = lambda * (trace_S - double(dim)) - 2. * mu;
+      // G^{-1} = (tr S I - S)^{-1} in 3D, with S = R^T F.
+      Tensor<2, 3> G_inverse;
+      if constexpr (dim == 3)
+        {
+          Tensor<2, 3> G;
+          for (unsigned int i = 0; i < 3; ++i)
+            for (unsigned int j = 0; j < 3; ++j)
+              {
+                double S_ij = 0;
+                for (unsigned int m = 0; m < 3; ++m)
+                  S_ij += R[m][i] * F[m][j];
+                G[i][j] = (i == j ? trace_S : 0.) - S_ij;
+              }
+          // S is symmetric up to round-off; so is G.
+          G         = 0.5 * (G + transpose(G));
+          G_inverse = invert(G);
+        }
+      for (unsigned int k = 0; k < dim; ++k)
+        for (unsigned int l = 0; l < dim; ++l)
+          {
+            // dR for dF = e_k e_l^T: (R^T dF)_ab = R_ka delta_bl.
+            Tensor<2, dim> dR;
+            if constexpr (dim == 2)
+              {
+                const double w
+                  = ((l == 0 ? R[k][1] : 0.) - (l == 1 ? R[k][0] : 0.))
+                    / trace_S;
+                // dR = R W, W = w [[0, -1], [1, 0]].
+                for (unsigned int i = 0; i < 2; ++i)
+                  {
+                    dR[i][0] = w * R[i][1];
+                    dR[i][1] = -w * R[i][0];
+                  }
+              }
+            else if constexpr (dim == 3)
+              {
+                // axial(M) = (M_21, M_02, M_10), M_ab = R_ka delta_bl -
+                // R_kb delta_al.
+                Tensor<1, 3> a;
+                a[0] = (l == 1 ? R[k][2] : 0.) - (l == 2 ? R[k][1] : 0.);
+                a[1] = (l == 2 ? R[k][0] : 0.) - (l == 0 ? R[k][2] : 0.);
+                a[2] = (l == 0 ? R[k][1] : 0.) - (l == 1 ? R[k][0] : 0.);
+                const Tensor<1, 3> w = G_inverse * a;
+                // dR = R [w]x, [w]x = [[0, -w2, w1], [w2, 0, -w0],
+                // [-w1, w0, 0]].
+                for (unsigned int i = 0; i < 3; ++i)
+                  {
+                    dR[i][0] = R[i][1] * w[2] - R[i][2] * w[1];
+                    dR[i][1] = R[i][2] * w[0] - R[i][0] * w[2];
+                    dR[i][2] = R[i][0] * w[1] - R[i][1] * w[0];
+                  }
+              }
+            for (unsigned int i = 0; i < dim; ++i)
+              for (unsigned int j = 0; j < dim; ++j)
+                A[i][j][k][l] = lambda * R[i][j] * R[k][l]
+                                + rotation_factor * dR[i][j]
+                                + (i == k && j == l ? 2. * mu : 0.);
+          }
+    }
+
   private:
     const double lambda;
     const double mu;
