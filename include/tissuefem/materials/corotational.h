@@ -116,7 +116,7 @@ namespace tissuefem::materials
                                   Tensor<2, dim>       &P,
                                   Tensor<4, dim>       &A) const override
     {
-      P = first_piola_kirchhoff(F, fibre);
+      (void)fibre;
       SmallMatrix<dim, double> matrix;
       for (unsigned int i = 0; i < dim; ++i)
         for (unsigned int j = 0; j < dim; ++j)
@@ -126,6 +126,10 @@ namespace tissuefem::materials
       for (unsigned int i = 0; i < dim; ++i)
         for (unsigned int j = 0; j < dim; ++j)
           trace_S += R[i][j] * F[i][j];
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = 0; j < dim; ++j)
+          P[i][j] = 2. * mu * (F[i][j] - R[i][j])
+                    + lambda * (trace_S - double(dim)) * R[i][j];
       const double rotation_factor = lambda * (trace_S - double(dim)) - 2. * mu;
       // G^{-1} = (tr S I - S)^{-1} in 3D, with S = R^T F.
       Tensor<2, 3> G_inverse;
@@ -239,11 +243,14 @@ namespace tissuefem::materials
                                  std::abs(value_of(next) - value_of(R[i][j])));
                     R[i][j] = next;
                   }
-              // Two more sweeps after the values converge let the
-              // derivatives (which converge with them) settle too; plain
-              // numbers stop at once.
-              if (change < 1e-15
-                  && (std::is_arithmetic_v<Number> || iteration > 2))
+              // Plain numbers stop once the change is below 1e-9: the
+              // iteration converges quadratically, so the error left is of
+              // the order of its square. For AD numbers, two more sweeps
+              // after the values converge let the derivatives (which
+              // converge with them) settle too.
+              if (std::is_arithmetic_v<Number>
+                    ? change < 1e-9
+                    : change < 1e-15 && iteration > 2)
                 break;
             }
         }
