@@ -1,0 +1,99 @@
+#!/bin/bash
+# SOFA's CPU benchmark beams (parameters/sofa/beam_small.prm, 18,954
+# tetrahedra; beam_large.prm, 101,250 tetrahedra with a floor), over their
+# first simulated second, against issue 32's targets and against converged
+# backward Euler at the same step (MUMPS, Newton to its default tolerances),
+# all in one run of this script.
+#
+# Per run: the median and 95th percentile of the wall time per step (ms,
+# the integrator's step), the whole run's wall time (s, set-up and output
+# included), the simulated time per wall-clock second of the whole run,
+# and the tip error: the largest distance over t in [0, 1] between the
+# tip's displacement (probe 1, the centre of the free end) and the
+# reference's, relative to the reference's largest tip displacement (%).
+# Targets: per step at most 20 ms (small) and 60 ms (large), twice SOFA's
+# reported CPU frame rates (23.5 and 8 frames per second); stretch 10 and
+# 33 ms; tip error within 1 %.
+#
+# Usage (from the repository top, after building):
+#   bash benchmarks/sofa_beams.sh [path/to/tissuefem] [small|large|both]
+set -euo pipefail
+exe=$(realpath "${1:-build/tissuefem}")
+which=${2:-both}
+top=$(realpath "$(dirname "$0")/..")
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work"
+
+value() { # directory, key in its run.txt
+  sed -n "s/^$2 = \([^ ]*\).*/\1/p" "$1/run.txt"
+}
+
+run() { # directory, prm, settings...
+  local dir=$1
+  shift
+  "$exe" "$@" --set "Time integration/End time=1" \
+    --set "Output/VTU/Interval=0" --set "Output/Directory=$dir" \
+    > "$dir.log" 2>&1 || { tail -3 "$dir.log" >&2; exit 1; }
+}
+
+tip_error() { # run directory, reference directory: % of the largest tip motion
+  python3 - "$1/probes.csv" "$2/probes.csv" <<'EOF'
+import bisect, csv, math, sys
+def tip(name):
+    rows = {}
+    for row in csv.DictReader(open(name)):
+        if row["probe"] == "1" and float(row["time"]) <= 1 + 1e-9:
+            rows[float(row["time"])] = [float(row[k]) for k in ("ux", "uy", "uz")]
+    return sorted(rows.items())
+run, ref = tip(sys.argv[1]), tip(sys.argv[2])
+times = [t for t, _ in ref]
+def reference(t):
+    # Linear in time between the reference's own steps (it may halve its
+    # step where contact engages).
+    k = min(max(bisect.bisect_left(times, t), 1), len(times) - 1)
+    (t0, u0), (t1, u1) = ref[k - 1], ref[k]
+    w = (t - t0) / (t1 - t0)
+    return [(1 - w) * a + w * b for a, b in zip(u0, u1)]
+scale = max(math.dist(u, [0, 0, 0]) for _, u in ref)
+print("%.3f" % (100 * max(math.dist(u, reference(t)) for t, u in run) / scale))
+EOF
+}
+
+row() { # label, directory, reference directory, target ms
+  local dir=$2
+  local median p95 total
+  median=$(value "$dir" "step median")
+  p95=$(value "$dir" "step p95")
+  total=$(value "$dir" "wall total")
+  printf '%-44s %9.1f %9.1f %8.1f %9.3f %9s %9s\n' "$1" \
+    "$(echo "1000 * $median" | bc -l)" "$(echo "1000 * $p95" | bc -l)" \
+    "$total" "$(echo "1 / $total" | bc -l)" "$(tip_error "$dir" "$3")" \
+    "$(echo "1000 * $median / $4" | bc -l | xargs printf '%.2f')"
+}
+
+header() {
+  printf '\n%s (target %s ms per step, tip error 1 %%)\n' "$1" "$2"
+  printf '%-44s %9s %9s %8s %9s %9s %9s\n' run "median ms" "p95 ms" "run s" \
+    "sim/wall" "tip err %" "/target"
+}
+
+for beam in small large; do
+  [ "$which" = both ] || [ "$which" = "$beam" ] || continue
+  prm="$top/parameters/sofa/beam_$beam.prm"
+  target=$([ $beam = small ] && echo 20 || echo 60)
+  run "$beam-reference" "$prm" --set "Time integration/Integrator=backward Euler" \
+    --set "Linear solver/Type=MUMPS"
+  run "$beam-scene" "$prm"
+  run "$beam-lu" "$prm" --set "Linear solver/Type=MUMPS"
+  run "$beam-cg-exact" "$prm" --set "Linear solver/Type=cg amg" \
+    --set "Linear solver/Relative tolerance=1e-10"
+  run "$beam-cg-loose" "$prm" --set "Linear solver/Type=cg amg" \
+    --set "Linear solver/Relative tolerance=1e-2"
+  header "$beam beam" "$target"
+  row "converged backward Euler (MUMPS)" "$beam-reference" "$beam-reference" "$target"
+  row "the scene's settings" "$beam-scene" "$beam-reference" "$target"
+  row "linearly implicit Euler, MUMPS" "$beam-lu" "$beam-reference" "$target"
+  row "linearly implicit Euler, cg amg to 1e-10" "$beam-cg-exact" "$beam-reference" "$target"
+  row "linearly implicit Euler, cg amg to 1e-2" "$beam-cg-loose" "$beam-reference" "$target"
+done
