@@ -12,6 +12,12 @@
 #           summary file equal EXPECTED_OUTPUT (the closed form of
 #           prm/tool_pull_bar_1d), and every answer must be a line of
 #           finite numbers, one per coordinate and the time;
+#   glitch  as full, with two bad positions sent among the good ones at
+#           t = 0.4: one far outside the scene (1e308) and one jumping 0.16
+#           from the last (more than a tenth of the bar): each must be
+#           answered with a line starting 'refused', the run must go on
+#           with the last good target, report 2 refused positions, and
+#           give the same closed form;
 #   silent  sends positions up to t = 0.3 and then nothing: tissuefem must
 #           end the run after its 'Live timeout' (1 s) with exit status 0,
 #           say why, and leave complete outputs up to t = 0.25.
@@ -45,17 +51,31 @@ for k in $(seq 0 $last); do
     awk -v a="$value" 'BEGIN { exit !(a == a + 0 && a - a == 0) }' ||
       fail "answer '$answer' is not numeric"
   done
+  if [ "$mode" = glitch ] && [ "$k" -eq 200 ]; then
+    for bad in "0.4001 1e308" "0.4002 0.2"; do
+      echo "$bad" >&3
+      read -r -t 10 answer <&3 || fail "no answer to the bad position '$bad'"
+      case "$answer" in
+        refused*) ;;
+        *) fail "the bad position '$bad' was answered '$answer', not refused" ;;
+      esac
+    done
+  fi
 done
-if [ "$mode" = full ]; then
+if [ "$mode" != silent ]; then
   echo bye >&3
 fi
 wait "$pid"
 status=$?
 exec 3>&-
 [ "$status" -eq 0 ] || { cat run.log; fail "tissuefem exited with status $status"; }
-if [ "$mode" = full ]; then
+if [ "$mode" != silent ]; then
   numdiff -q -a 1e-8 -r 1e-6 output "$expected" > /dev/null ||
     { diff output "$expected"; fail "results differ from the closed form"; }
+  if [ "$mode" = glitch ]; then
+    grep -q "refused 2 positions" run.log ||
+      { cat run.log; fail "the run does not report the 2 refused positions"; }
+  fi
 else
   grep -q "live session ended at t = 0.25: the client sent nothing" run.log ||
     { cat run.log; fail "the run did not end at t = 0.25 naming the silent client"; }
