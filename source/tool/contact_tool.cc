@@ -99,9 +99,10 @@ namespace tissuefem::tool
 
   template <int dim>
   void
-  ContactTool<dim>::connect(const std::string &directory)
+  ContactTool<dim>::connect(const std::string &directory,
+                            const double       body_diameter)
   {
-    haptic.connect(directory);
+    haptic.connect(directory, body_diameter);
   }
 
 

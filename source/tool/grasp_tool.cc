@@ -186,9 +186,10 @@ namespace tissuefem::tool
 
   template <int dim>
   void
-  GraspTool<dim>::connect(const std::string &directory)
+  GraspTool<dim>::connect(const std::string &directory,
+                          const double       body_diameter)
   {
-    haptic.connect(directory);
+    haptic.connect(directory, body_diameter);
   }
 
 

@@ -37,14 +37,33 @@ namespace tissuefem::tool
                       "position minus the first), tissuefem answers each "
                       "with 't fx fy fz', the force extrapolated to that "
                       "time, and simulates a step once positions cover its "
-                      "end. 'bye' or closing the connection ends the run "
-                      "cleanly.");
+                      "end. A position beyond 'Live position limit' or "
+                      "'Live jump limit' is answered 'refused t x y z: why' "
+                      "and not followed. 'bye' or closing the connection "
+                      "ends the run cleanly.");
     prm.declare_entry("Live timeout",
                       "5",
                       Patterns::Double(),
                       "Wall-clock seconds to wait for the live client to "
                       "connect or send; a silent client ends the run "
                       "cleanly with the outputs so far; > 0.");
+    prm.declare_entry(
+      "Live position limit",
+      "0",
+      Patterns::Double(0),
+      "Live client: the farthest a position may lie from the client's first "
+      "position (length units); a position beyond is refused (answered "
+      "'refused ...', not followed: the tool keeps its last good target). "
+      "Guards the run against a device glitch such as '0.1 1e308 0 0'. 0 "
+      "(default): the diameter of the body.");
+    prm.declare_entry(
+      "Live jump limit",
+      "0",
+      Patterns::Double(0),
+      "Live client: the farthest a position may lie from the last position "
+      "followed (length units); a farther one is refused likewise. 0 "
+      "(default): a tenth of the body's diameter (at 500 positions per "
+      "second, 50 diameters per second).");
     prm.declare_entry("Haptic budget",
                       "0.002",
                       Patterns::Double(),
@@ -58,11 +77,13 @@ namespace tissuefem::tool
                                      const std::string &section,
                                      const bool         check)
   {
-    rate          = prm.get_double("Haptic rate");
-    extrapolation = prm.get("Force extrapolation");
-    budget        = prm.get_double("Haptic budget");
-    live_port     = prm.get_integer("Live port");
-    live_timeout  = prm.get_double("Live timeout");
+    rate           = prm.get_double("Haptic rate");
+    extrapolation  = prm.get("Force extrapolation");
+    budget         = prm.get_double("Haptic budget");
+    live_port      = prm.get_integer("Live port");
+    live_timeout   = prm.get_double("Live timeout");
+    position_limit = prm.get_double("Live position limit");
+    jump_limit     = prm.get_double("Live jump limit");
     if (!check)
       return;
     require(std::isfinite(rate) && rate > 0,
@@ -74,6 +95,12 @@ namespace tissuefem::tool
     require(std::isfinite(live_timeout) && live_timeout > 0,
             section + "/Live timeout",
             "must be > 0 (seconds)");
+    require(std::isfinite(position_limit) && position_limit >= 0,
+            section + "/Live position limit",
+            "must be finite and >= 0 (length units; 0: automatic)");
+    require(std::isfinite(jump_limit) && jump_limit >= 0,
+            section + "/Live jump limit",
+            "must be finite and >= 0 (length units; 0: automatic)");
   }
 
 
@@ -89,14 +116,19 @@ namespace tissuefem::tool
 
   template <int dim>
   void
-  HapticRenderer<dim>::connect(const std::string &directory)
+  HapticRenderer<dim>::connect(const std::string &directory,
+                               const double       body_diameter)
   {
     // Every process takes part in the link (it shares the positions).
+    const LiveLink::Limits limits{
+      parameters.position_limit > 0 ? parameters.position_limit : body_diameter,
+      parameters.jump_limit > 0 ? parameters.jump_limit : 0.1 * body_diameter};
     if (live())
       link = std::make_unique<LiveLink>(parameters.live_port,
                                         parameters.live_timeout,
                                         dim,
                                         1. / parameters.rate,
+                                        limits,
                                         directory + "/live_port");
   }
 

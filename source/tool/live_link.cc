@@ -27,10 +27,12 @@ namespace tissuefem::tool
                      const double       timeout,
                      const unsigned int dim,
                      const double       period,
+                     const Limits      &limits,
                      const std::string &port_file)
       : timeout(timeout)
       , dim(dim)
       , period(period)
+      , limits(limits)
   {
     int bound_port = 0;
     if (parallel_tools::is_root())
@@ -167,6 +169,48 @@ namespace tissuefem::tool
   }
 
 
+  std::string
+  LiveLink::refusal(const Sample &sample)
+  {
+    // Scaled, so that positions near the largest double do not overflow.
+    const auto distance
+      = [this](const std::vector<double> &a, const std::vector<double> &b) {
+          double largest = 0;
+          for (unsigned int i = 0; i < dim; ++i)
+            largest = std::max(largest, std::abs(a[i] - b[i]));
+          if (largest == 0 || !std::isfinite(largest))
+            return largest;
+          double sum = 0;
+          for (unsigned int i = 0; i < dim; ++i)
+            sum += std::pow((a[i] - b[i]) / largest, 2);
+          return largest * std::sqrt(sum);
+        };
+    std::ostringstream why;
+    why << std::setprecision(4);
+    {
+      std::lock_guard<std::mutex> guard(lock);
+      if (origin.empty())
+        origin = sample.position;
+      const double from_origin = distance(sample.position, origin);
+      if (!(from_origin <= limits.displacement))
+        why << "it lies " << from_origin
+            << " from the first position, more than the limit "
+            << limits.displacement << " (length units)";
+    }
+    if (why.str().empty() && !last_followed.empty())
+      {
+        const double jump = distance(sample.position, last_followed);
+        if (!(jump <= limits.jump))
+          why << "it jumps " << jump
+              << " from the last position followed, more than the limit "
+              << limits.jump << " (length units)";
+      }
+    if (why.str().empty())
+      last_followed = sample.position;
+    return why.str();
+  }
+
+
   std::vector<double>
   LiveLink::force_at(const double time, const std::vector<double> &position)
   {
@@ -240,6 +284,21 @@ namespace tissuefem::tool
                      + "' (expected 't' and " + std::to_string(dim)
                      + " finite coordinates)";
             return false;
+          }
+        if (const std::string why = refusal(sample); !why.empty())
+          {
+            const std::string text
+              = "refused " + line.substr(0, 80) + ": " + why + "\n";
+            if (::send(client, text.data(), text.size(), MSG_NOSIGNAL)
+                != static_cast<ssize_t>(text.size()))
+              {
+                reason = "the client stopped reading";
+                return false;
+              }
+            std::lock_guard<std::mutex> guard(lock);
+            if (refused++ == 0)
+              first_refusal = "'" + line.substr(0, 80) + "': " + why;
+            continue;
           }
         // Answer first: the device is waiting.
         std::ostringstream answer;
@@ -338,6 +397,9 @@ namespace tissuefem::tool
       << (thread_done ? lag_at_end
                       : std::max(0., latest_client_time - simulated_time))
       << " time units behind its latest time";
+    if (refused > 0)
+      s << "; refused " << refused << " position" << (refused > 1 ? "s" : "")
+        << " (not followed; the first " << first_refusal << ")";
     return s.str();
   }
 } // namespace tissuefem::tool

@@ -68,7 +68,7 @@ namespace tissuefem::tool
     }
 
     void
-    connect(const std::string &directory) override;
+    connect(const std::string &directory, const double body_diameter) override;
     bool
     synchronize(const double time) override;
     std::string

@@ -79,7 +79,7 @@ namespace tissuefem::tool
     /// In live mode, starts listening for the client (the port goes to
     /// @p directory/live_port).
     void
-    connect(const std::string &directory) override;
+    connect(const std::string &directory, const double body_diameter) override;
 
     /**
      * Live mode: receives positions from the client until they cover

@@ -39,6 +39,9 @@ namespace tissuefem::tool
     /// -1: no live client; else the loopback port (0: any free one).
     int    live_port    = -1;
     double live_timeout = 5;
+    /// 'Live position limit' and 'Live jump limit' (length units; 0:
+    /// from the body's diameter).
+    double position_limit = 0, jump_limit = 0;
   };
 
 
@@ -71,9 +74,10 @@ namespace tissuefem::tool
                    std::function<Tensor<1, dim>(const double)> displacement);
 
     /// Opens the live link (its port goes to @p directory/live_port), if
-    /// asked for.
+    /// asked for, with 'Live position limit' and 'Live jump limit' (0:
+    /// @p body_diameter and a tenth of it).
     void
-    connect(const std::string &directory);
+    connect(const std::string &directory, const double body_diameter);
 
     /// Whether positions come from a live client.
     bool

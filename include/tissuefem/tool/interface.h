@@ -97,10 +97,11 @@ namespace tissuefem::tool
     }
 
     /// Opens any link to a device (which may leave a file in
-    /// @p directory, the output directory). Called once, after all input
-    /// has been checked.
+    /// @p directory, the output directory), with limits on what the device
+    /// may ask scaled by @p body_diameter (length units). Called once,
+    /// after all input has been checked.
     virtual void
-    connect(const std::string & /*directory*/)
+    connect(const std::string & /*directory*/, const double /*body_diameter*/)
     {
     }
 

@@ -35,6 +35,13 @@ namespace tissuefem::tool
    * connect, or sends nothing, within the timeout, closes the connection,
    * or sends a malformed line ends the session: ended() turns true with
    * reason(); the run then finishes cleanly with what it has.
+   *
+   * A well-formed position the simulation must not follow (a device
+   * glitch: farther than Limits::displacement from the first position, or
+   * farther than Limits::jump from the last one followed) is answered with
+   * "refused t x y z: why" instead of a force and not followed: the tool
+   * keeps its last good target and the session goes on (the count is in
+   * report()).
    */
   class LiveLink
   {
@@ -43,6 +50,14 @@ namespace tissuefem::tool
     {
       double              time;
       std::vector<double> position;
+    };
+
+    /// What a client may ask (length units): how far from its first
+    /// position, and how far from the last position followed.
+    struct Limits
+    {
+      double displacement;
+      double jump;
     };
 
     /**
@@ -69,6 +84,7 @@ namespace tissuefem::tool
              double             timeout,
              unsigned int       dim,
              double             period,
+             const Limits      &limits,
              const std::string &port_file);
     ~LiveLink();
 
@@ -116,13 +132,21 @@ namespace tissuefem::tool
     report(const double simulated_time) const;
 
   private:
+    /// Why @p sample must not be followed (empty: it may); sets the
+    /// origin from the first position.
+    std::string
+    refusal(const Sample &sample);
+
     double       timeout;
     unsigned int dim;
     double       period;
-    int          listener = -1, client = -1;
-    std::string  pending; // bytes of an incomplete line
-    bool         has_ended = false;
-    std::string  end_reason;
+    Limits       limits;
+    /// The last position followed (communication thread).
+    std::vector<double> last_followed;
+    int                 listener = -1, client = -1;
+    std::string         pending; // bytes of an incomplete line
+    bool                has_ended = false;
+    std::string         end_reason;
 
     // Shared between the communication thread and the simulation.
     mutable std::mutex      lock;
@@ -133,7 +157,9 @@ namespace tissuefem::tool
     bool                    thread_done = false;
     std::atomic<bool>       stop{false}, step_running{false};
     std::vector<double>     latencies; ///< seconds, one per answer
-    unsigned int            during_steps       = 0;
+    unsigned int            during_steps = 0;
+    unsigned int            refused      = 0;
+    std::string             first_refusal;
     double                  latest_client_time = 0;
     double                  lag_at_end         = 0;
     std::vector<double>     origin;
