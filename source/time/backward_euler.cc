@@ -122,6 +122,7 @@ namespace tissuefem::time
           // Accepted: contributions with history commit it (a rejected
           // step's stick points and multipliers are dropped).
           context->solid.accept_step(next.u, next.time);
+          report.damping_work += damping_work(state, next, step);
           state.time = next.time;
           state.u.swap(next.u);
           state.v.swap(next.v);

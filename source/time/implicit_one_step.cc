@@ -292,7 +292,6 @@ namespace tissuefem::time
     // prescribed values, unchanged) in the state.
     solid.apply_dirichlet_values(t_new, next.u);
     finish(state, rates_u_tilde(), h, next);
-    report.damping_work += damping_work(state, next, h, c);
     return {};
   }
 
@@ -329,17 +328,18 @@ namespace tissuefem::time
   double
   ImplicitOneStep::damping_work(const State &old_state,
                                 const State &new_state,
-                                const double h,
-                                const double c_damped)
+                                const double h)
   {
     if (!damped)
       return 0;
+    const double c        = mass_coefficient(h);
+    const double c_damped = (c + context->time.rayleigh_mass / h)
+                            / (1 + context->time.rayleigh_stiffness / h);
     // The step's equation with the damping force f_d written out,
     // c M (u - u_tilde) + f_d + r(u) = 0, and the solved one divided by
     // kappa, c' M (u - u_tilde') + r(u) + g = 0, give on the free rows
     // f_d = g + M (c' (u - u_tilde') - c (u - u_tilde)).
-    const double c = mass_coefficient(h);
-    VectorType   combination(new_state.u), force, step(new_state.u);
+    VectorType combination(new_state.u), force, step(new_state.u);
     combination.sadd(c_damped - c, -c_damped, u_tilde);
     combination.add(c, undamped_u_tilde);
     context->solid.initialize_vector(force);
@@ -429,6 +429,7 @@ namespace tissuefem::time
     // Contributions with history (friction's stick points) commit only
     // now: an attempt that failed never got here.
     context->solid.accept_step(next.u, next.time);
+    report.damping_work += damping_work(state, next, h);
     state.time = next.time;
     state.u.swap(next.u);
     state.v.swap(next.v);

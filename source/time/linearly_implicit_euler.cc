@@ -169,7 +169,6 @@ namespace tissuefem::time
         }
       next.time = t_new;
       finish(state, rates_u_tilde(), h, next);
-      report.damping_work += damping_work(state, next, h, c);
       return {};
     }
 

@@ -205,15 +205,15 @@ namespace tissuefem::time
       return damped ? undamped_u_tilde : u_tilde;
     }
 
-    /// The energy the damping force took out over the step from
-    /// @p old_state to @p new_state over @p h (energy units, from the
-    /// step's equations: f_d = -c M (u - u_tilde) - r(u) on the free
-    /// rows), with @p c_damped what damp() returned; 0 without damping.
+    /// The energy the damping force took out over the step of size @p h
+    /// from @p old_state to @p new_state, the last one attempted (energy
+    /// units, from the step's equations: f_d = -c M (u - u_tilde) - r(u)
+    /// on the free rows); 0 without damping. Called where a step is
+    /// accepted, so that rejected attempts do not count.
     double
     damping_work(const State &old_state,
                  const State &new_state,
-                 const double h,
-                 const double c_damped);
+                 const double h);
 
     /// The solid's implicit residual (with @p with_jacobian, its Jacobian)
     /// plus the damping shift g.
