@@ -59,6 +59,19 @@ namespace tissuefem::time
     auto       start = std::chrono::steady_clock::now();
     solid.implicit_residual_lifting(
       u, u_tilde, mass_coefficient, time, residual);
+    if (deferred_shift != 0)
+      {
+        // r(u_n) = R(u_n) - c' M (u_n - u_tilde') on the free rows (the
+        // prescribed rows are zero: their values do not change).
+        VectorType difference(u);
+        difference -= u_tilde;
+        shift.reinit(u);
+        solid.mass_matrix().vmult(shift, difference);
+        shift.sadd(-mass_coefficient, 1., residual);
+        solid.zero_constrained_entries(shift);
+        shift *= deferred_shift;
+        deferred_shift = 0;
+      }
     if (damped)
       residual += shift;
     report.assembly_seconds += seconds_since(start);
@@ -300,8 +313,10 @@ namespace tissuefem::time
   ImplicitOneStep::damp(const State &old_state,
                         const double h,
                         const double c,
-                        const double t_new)
+                        const double t_new,
+                        const bool   from_lifting)
   {
+    deferred_shift     = 0;
     const double alpha = context->time.rayleigh_mass;
     const double beta  = context->time.rayleigh_stiffness;
     damped             = takes_rayleigh_damping() && (alpha > 0 || beta > 0);
@@ -312,7 +327,9 @@ namespace tissuefem::time
     // u_tilde' = (c u_tilde + alpha/h u_n) / (c + alpha/h)
     u_tilde.sadd(c / c_with_mass, alpha / h / c_with_mass, old_state.u);
     const double kappa = 1 + beta / h;
-    if (beta > 0)
+    if (beta > 0 && from_lifting)
+      deferred_shift = -beta / (h * kappa);
+    else if (beta > 0)
       {
         // r(u_n) at t_{n+1}: the solid's residual without the mass term.
         context->solid.implicit_residual(

@@ -139,7 +139,7 @@ namespace tissuefem::time
       double c = mass_coefficient(h);
       try
         {
-          c = damp(state, h, c, t_new);
+          c = damp(state, h, c, t_new, boundary_fixed(state, t_new));
           // At u_n with its old prescribed values, one iteration with the
           // Jacobian M/h^2 + K(u_n); a kept factorization serves while it
           // is recent and of this step size (see 'Factorization interval').
@@ -173,6 +173,19 @@ namespace tissuefem::time
     }
 
   private:
+    /// Whether the prescribed values at @p t_new are those of @p state
+    /// (then the step's lifting residual gives the damping's r(u_n)).
+    bool
+    boundary_fixed(const State &state, const double t_new) const
+    {
+      if (context->time.rayleigh_stiffness == 0)
+        return false;
+      VectorType prescribed(state.u);
+      context->solid.apply_dirichlet_values(t_new, prescribed);
+      prescribed -= state.u;
+      return prescribed.linfty_norm() == 0;
+    }
+
     /// 'Factorization interval'.
     unsigned int interval = 1;
     /// The step size of the kept factorization (0: none usable) and the
