@@ -100,7 +100,9 @@ namespace tissuefem::time
       "u_{n+1} is beta (f(u_{n+1}) - f(u_n))/dt, with f the internal and "
       "contact forces minus the loads at t_{n+1}: beta K v for a linear "
       "body, and for linearly implicit Euler exactly SOFA's beta K(u_n) "
-      "v_{n+1}. Costs one residual evaluation per step. 0 (default): none.");
+      "v_{n+1}. Costs one residual evaluation per step (the linearly "
+      "implicit Euler with fixed Dirichlet values takes it from its own "
+      "residual and one mass product instead). 0 (default): none.");
     IntegratorRegistry::instance().declare_parameters(prm);
     prm.leave_subsection();
   }
