@@ -51,18 +51,14 @@ namespace tissuefem::problems
     integrator
       = time::IntegratorRegistry::instance().create(time_parameters.integrator,
                                                     prm);
-    require(integrator->takes_rayleigh_damping()
-              || time_parameters.rayleigh_mass == 0,
-            "Time integration/Rayleigh mass damping",
-            "must be 0 with the integrator '" + time_parameters.integrator
-              + "' (Rayleigh damping: backward Euler and linearly implicit "
-                "Euler)");
-    require(integrator->takes_rayleigh_damping()
-              || time_parameters.rayleigh_stiffness == 0,
-            "Time integration/Rayleigh stiffness damping",
-            "must be 0 with the integrator '" + time_parameters.integrator
-              + "' (Rayleigh damping: backward Euler and linearly implicit "
-                "Euler)");
+    for (const auto &[name, value] :
+         {std::pair("mass", time_parameters.rayleigh_mass),
+          std::pair("stiffness", time_parameters.rayleigh_stiffness)})
+      require(integrator->takes_rayleigh_damping() || value == 0,
+              std::string("Time integration/Rayleigh ") + name + " damping",
+              "must be 0 with the integrator '" + time_parameters.integrator
+                + "' (Rayleigh damping: backward Euler and linearly "
+                  "implicit Euler)");
     linear_solver
       = std::make_unique<solvers::LinearSolver>(linear_solver_parameters);
     give_near_null_space();

@@ -64,20 +64,10 @@ namespace tissuefem::materials
     Tensor<2, dim>
     first_piola_kirchhoff(const Tensor<2, dim> &F, const Tensor<1, dim> &) const
     {
-      SmallMatrix<dim, double> matrix;
-      for (unsigned int i = 0; i < dim; ++i)
-        for (unsigned int j = 0; j < dim; ++j)
-          matrix[i][j] = F[i][j];
-      const SmallMatrix<dim, double> R       = rotation(matrix);
-      double                         trace_S = 0;
-      for (unsigned int i = 0; i < dim; ++i)
-        for (unsigned int j = 0; j < dim; ++j)
-          trace_S += R[i][j] * F[i][j];
-      Tensor<2, dim> P;
-      for (unsigned int i = 0; i < dim; ++i)
-        for (unsigned int j = 0; j < dim; ++j)
-          P[i][j] = 2. * mu * (F[i][j] - R[i][j])
-                    + lambda * (trace_S - double(dim)) * R[i][j];
+      SmallMatrix<dim, double> R;
+      double                   trace_S;
+      Tensor<2, dim>           P;
+      polar_stress(F, R, trace_S, P);
       return P;
     }
 
@@ -117,19 +107,9 @@ namespace tissuefem::materials
                                   Tensor<4, dim>       &A) const override
     {
       (void)fibre;
-      SmallMatrix<dim, double> matrix;
-      for (unsigned int i = 0; i < dim; ++i)
-        for (unsigned int j = 0; j < dim; ++j)
-          matrix[i][j] = F[i][j];
-      const SmallMatrix<dim, double> R       = rotation(matrix);
-      double                         trace_S = 0;
-      for (unsigned int i = 0; i < dim; ++i)
-        for (unsigned int j = 0; j < dim; ++j)
-          trace_S += R[i][j] * F[i][j];
-      for (unsigned int i = 0; i < dim; ++i)
-        for (unsigned int j = 0; j < dim; ++j)
-          P[i][j] = 2. * mu * (F[i][j] - R[i][j])
-                    + lambda * (trace_S - double(dim)) * R[i][j];
+      SmallMatrix<dim, double> R;
+      double                   trace_S;
+      polar_stress(F, R, trace_S, P);
       const double rotation_factor = lambda * (trace_S - double(dim)) - 2. * mu;
       // G^{-1} = (tr S I - S)^{-1} in 3D, with S = R^T F.
       Tensor<2, 3> G_inverse;
@@ -194,6 +174,29 @@ namespace tissuefem::materials
   private:
     const double lambda;
     const double mu;
+
+    /// The polar rotation @p R of @p F, tr S = R : F and P = 2 mu (F - R)
+    /// + lambda (tr S - d) R, in double precision.
+    void
+    polar_stress(const Tensor<2, dim>     &F,
+                 SmallMatrix<dim, double> &R,
+                 double                   &trace_S,
+                 Tensor<2, dim>           &P) const
+    {
+      SmallMatrix<dim, double> matrix;
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = 0; j < dim; ++j)
+          matrix[i][j] = F[i][j];
+      R       = rotation(matrix);
+      trace_S = 0;
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = 0; j < dim; ++j)
+          trace_S += R[i][j] * F[i][j];
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = 0; j < dim; ++j)
+          P[i][j] = 2. * mu * (F[i][j] - R[i][j])
+                    + lambda * (trace_S - double(dim)) * R[i][j];
+    }
 
     template <typename Number>
     static SmallMatrix<dim, Number>
