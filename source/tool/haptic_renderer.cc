@@ -119,6 +119,10 @@ namespace tissuefem::tool
   HapticRenderer<dim>::connect(const std::string &directory,
                                const double       body_diameter)
   {
+    // Tool motions below a millionth of the body are round-off (a tool
+    // held still by its trajectory's expression moves by 1e-18): the
+    // secant stiffness must not learn from them.
+    smallest_motion = 1e-6 * body_diameter;
     // Every process takes part in the link (it shares the positions).
     const LiveLink::Limits limits{
       parameters.position_limit > 0 ? parameters.position_limit : body_diameter,
@@ -203,10 +207,14 @@ namespace tissuefem::tool
         // the tool stayed engaged.
         if (engaged && engaged_at_last)
           {
-            rate                    = (force - last_force) / (t1 - t0);
-            have_rate               = true;
+            rate      = (force - last_force) / (t1 - t0);
+            have_rate = true;
+            // Only from motions the body can feel: a force change over a
+            // round-off motion (the tool held still while the tissue
+            // relaxes) gave stiffnesses of 1e13 and extrapolated forces of
+            // 1e11 on parameters/muscle_palpation.prm.
             const Tensor<1, dim> dx = position - last_position;
-            if (dx.norm_square() > 0)
+            if (dx.norm_square() > 0 && dx.norm() > smallest_motion)
               stiffness
                 += outer_product((force - last_force) - stiffness * dx, dx)
                    / dx.norm_square();

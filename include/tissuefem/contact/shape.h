@@ -50,7 +50,9 @@ namespace tissuefem::contact
 
     /// gap(y).distance alone: what contact asks of the many points that do
     /// not touch. Shapes whose normal and curvature cost more than their
-    /// distance override it.
+    /// distance override it. It must be a true signed distance (changing
+    /// by at most |dy| when y moves by dy): contact skips every point of a
+    /// boundary face whose centre lies farther than the face's radius.
     virtual double
     distance(const Point<dim> &y) const
     {

@@ -124,10 +124,13 @@ namespace tissuefem::tool
 
     std::optional<double> last_time;
     Tensor<1, dim>        last_force, last_position, rate;
-    Tensor<2, dim>        stiffness;
-    bool                  have_rate = false, engaged_at_last = false;
-    double                next_time = 0;
-    unsigned int          updates = 0, within_budget = 0;
-    double                max_error = 0, sum_error = 0, max_force = 0;
+    /// Tool motions the secant stiffness learns from are longer than this
+    /// (length units; a millionth of the body's diameter, set by connect()).
+    double         smallest_motion = 0;
+    Tensor<2, dim> stiffness;
+    bool           have_rate = false, engaged_at_last = false;
+    double         next_time = 0;
+    unsigned int   updates = 0, within_budget = 0;
+    double         max_error = 0, sum_error = 0, max_force = 0;
   };
 } // namespace tissuefem::tool
