@@ -214,8 +214,8 @@ namespace tissuefem::contact
     // can act. The distance is a true signed distance (1-Lipschitz), so a
     // face whose points lie within r of their centre c has every gap above
     // g(c) - r: one distance per face and obstacle instead of one per point
-    // (on SOFA's liver pressed by a capsule, contact's share of the steps
-    // 12.5 -> 9 %).
+    // (on SOFA's liver pressed by a capsule, augmented Lagrangian:
+    // contact's share of the steps 13.3 -> 7.2 %).
     double largest_multiplier = 0;
     for (const auto &[key, state] : states)
       largest_multiplier = std::max(largest_multiplier, state.lambda);

@@ -1,5 +1,3 @@
-#include <deal.II/grid/grid_tools.h>
-
 #include <tissuefem/output/output_files.h>
 #include <tissuefem/postprocess/tool_force.h>
 
@@ -46,13 +44,11 @@ namespace tissuefem::postprocess
   ToolForce<dim>::open()
   {
     const auto &tools = this->context->scene.tools;
-    // What a device may ask is scaled by the body's size.
-    const double diameter
-      = tools.empty() ? 0.
-                      : GridTools::diameter(this->context->scene.triangulation);
     // Every process takes part in a device link (it shares the positions).
+    // What a device may ask is scaled by the body's diameter.
     for (const auto &[name, tool] : tools)
-      tool->connect(this->context->directory, diameter);
+      tool->connect(this->context->directory,
+                    this->context->scene.solid->length_scale());
     if (!parallel_tools::is_root())
       return;
     const std::vector<std::string> names = files();

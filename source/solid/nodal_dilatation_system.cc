@@ -464,20 +464,15 @@ namespace tissuefem::solid
       {
         const auto global = TrilinosWrappers::global_row_index(from, row);
         uu_row[row]       = to.RowMap().LID(global);
-        int     length, to_length;
-        double *values, *to_values;
-        int    *local, *to_local;
+        int     length;
+        double *values;
+        int    *local;
         from.ExtractMyRowView(row, length, values, local);
-        to.ExtractMyRowView(uu_row[row], to_length, to_values, to_local);
         for (int j = 0; j < length; ++j)
-          {
-            const int column = to.ColMap().LID(
-              TrilinosWrappers::global_column_index(from, local[j]));
-            const int *found
-              = std::find(to_local, to_local + to_length, column);
-            AssertThrow(found != to_local + to_length, ExcInternalError());
-            uu_entry.push_back(found - to_local);
-          }
+          uu_entry.push_back(entry_in_row(
+            matrix,
+            uu_row[row],
+            TrilinosWrappers::global_column_index(from, local[j])));
       }
   }
 

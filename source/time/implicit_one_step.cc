@@ -326,19 +326,29 @@ namespace tissuefem::time
     const double c_with_mass = c + alpha / h;
     // u_tilde' = (c u_tilde + alpha/h u_n) / (c + alpha/h)
     u_tilde.sadd(c / c_with_mass, alpha / h / c_with_mass, old_state.u);
-    const double kappa = 1 + beta / h;
+    // g = -beta/(h kappa) r(u_n), kappa = 1 + beta/h.
+    const double shift_factor = -beta / (h + beta);
     if (beta > 0 && from_lifting)
-      deferred_shift = -beta / (h * kappa);
+      deferred_shift = shift_factor;
     else if (beta > 0)
       {
         // r(u_n) at t_{n+1}: the solid's residual without the mass term.
         context->solid.implicit_residual(
           old_state.u, u_tilde, 0., t_new, shift, false);
-        shift *= -beta / (h * kappa);
+        shift *= shift_factor;
       }
     else
       shift.reinit(old_state.u);
-    return c_with_mass / kappa;
+    return damped_coefficient(c, h);
+  }
+
+
+  double
+  ImplicitOneStep::damped_coefficient(const double c, const double h) const
+  {
+    // c' = (c + alpha/h) / kappa
+    return (c + context->time.rayleigh_mass / h)
+           / (1 + context->time.rayleigh_stiffness / h);
   }
 
 
@@ -350,8 +360,7 @@ namespace tissuefem::time
     if (!damped)
       return 0;
     const double c        = mass_coefficient(h);
-    const double c_damped = (c + context->time.rayleigh_mass / h)
-                            / (1 + context->time.rayleigh_stiffness / h);
+    const double c_damped = damped_coefficient(c, h);
     // The step's equation with the damping force f_d written out,
     // c M (u - u_tilde) + f_d + r(u) = 0, and the solved one divided by
     // kappa, c' M (u - u_tilde') + r(u) + g = 0, give on the free rows

@@ -214,7 +214,7 @@ namespace tissuefem::tool
             // relaxes) gave stiffnesses of 1e13 and extrapolated forces of
             // 1e11 on parameters/muscle_palpation.prm.
             const Tensor<1, dim> dx = position - last_position;
-            if (dx.norm_square() > 0 && dx.norm() > smallest_motion)
+            if (dx.norm() > smallest_motion)
               stiffness
                 += outer_product((force - last_force) - stiffness * dx, dx)
                    / dx.norm_square();

@@ -211,13 +211,21 @@ namespace tissuefem::tool
   }
 
 
+  bool
+  LiveLink::send_line(const std::string &line)
+  {
+    const std::string text = line + '\n';
+    // MSG_NOSIGNAL: a client that went away must not kill the run.
+    return ::send(client, text.data(), text.size(), MSG_NOSIGNAL)
+           == static_cast<ssize_t>(text.size());
+  }
+
+
   std::vector<double>
   LiveLink::force_at(const double time, const std::vector<double> &position)
   {
     std::vector<double>         f(dim, 0.);
     std::lock_guard<std::mutex> guard(lock);
-    if (origin.empty())
-      origin = position;
     if (!model.valid || !model.holding)
       return f;
     for (unsigned int i = 0; i < dim; ++i)
@@ -287,10 +295,7 @@ namespace tissuefem::tool
           }
         if (const std::string why = refusal(sample); !why.empty())
           {
-            const std::string text
-              = "refused " + line.substr(0, 80) + ": " + why + "\n";
-            if (::send(client, text.data(), text.size(), MSG_NOSIGNAL)
-                != static_cast<ssize_t>(text.size()))
+            if (!send_line("refused " + line.substr(0, 80) + ": " + why))
               {
                 reason = "the client stopped reading";
                 return false;
@@ -305,11 +310,7 @@ namespace tissuefem::tool
         answer << std::setprecision(10) << sample.time;
         for (const double f : force_at(sample.time, sample.position))
           answer << ' ' << f;
-        answer << '\n';
-        const std::string text = answer.str();
-        // MSG_NOSIGNAL: a client that went away must not kill the run.
-        if (::send(client, text.data(), text.size(), MSG_NOSIGNAL)
-            != static_cast<ssize_t>(text.size()))
+        if (!send_line(answer.str()))
           {
             reason = "the client stopped reading";
             return false;

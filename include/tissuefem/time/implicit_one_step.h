@@ -205,6 +205,11 @@ namespace tissuefem::time
          const double t_new,
          const bool   from_lifting = false);
 
+    /// c' = (c + alpha/h) / (1 + beta/h), the damped step's mass
+    /// coefficient for the undamped @p c and step @p h (see damp()).
+    double
+    damped_coefficient(const double c, const double h) const;
+
     /// The u_tilde of the undamped step (finish() takes it).
     const VectorType &
     rates_u_tilde() const

@@ -137,6 +137,11 @@ namespace tissuefem::tool
     std::string
     refusal(const Sample &sample);
 
+    /// Sends @p line and a newline to the client; false if it could not
+    /// (the client stopped reading).
+    bool
+    send_line(const std::string &line);
+
     double       timeout;
     unsigned int dim;
     double       period;
@@ -173,7 +178,8 @@ namespace tissuefem::tool
     /// when the session ends.
     bool
     answer_lines(std::string &reason);
-    /// The answer to a position at @p time under the current model.
+    /// The answer to a position at @p time under the current model (the
+    /// position has passed refusal(), which set the origin).
     std::vector<double>
     force_at(const double time, const std::vector<double> &position);
     /// Waits up to the timeout for @p fd to be readable, in slices, so
