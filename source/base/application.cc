@@ -50,7 +50,7 @@ namespace tissuefem
     boundary::BoundaryParameters::declare_parameters(prm);
     time::TimeParameters::declare_parameters(prm);
     solvers::NewtonParameters::declare_parameters(prm);
-    solvers::LinearSolverParameters::declare_parameters(prm);
+    solvers::LinearSolver::declare_parameters(prm);
     output::OutputParameters::declare_parameters(prm);
     adaptation::MeshRefinementParameters::declare_parameters(prm);
     problems::ProblemRegistry::instance().declare_parameters(prm);

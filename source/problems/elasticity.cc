@@ -22,7 +22,6 @@ namespace tissuefem::problems
   {
     time_parameters.parse_parameters(prm);
     newton_parameters.parse_parameters(prm);
-    linear_solver_parameters.parse_parameters(prm);
     output_parameters.parse_parameters(prm);
     refinement_parameters.parse_parameters(prm);
   }
@@ -51,16 +50,7 @@ namespace tissuefem::problems
     integrator
       = time::IntegratorRegistry::instance().create(time_parameters.integrator,
                                                     prm);
-    for (const auto &[name, value] :
-         {std::pair("mass", time_parameters.rayleigh_mass),
-          std::pair("stiffness", time_parameters.rayleigh_stiffness)})
-      require(integrator->takes_rayleigh_damping() || value == 0,
-              std::string("Time integration/Rayleigh ") + name + " damping",
-              "must be 0 with the integrator '" + time_parameters.integrator
-                + "' (Rayleigh damping: backward Euler and linearly "
-                  "implicit Euler)");
-    linear_solver
-      = std::make_unique<solvers::LinearSolver>(linear_solver_parameters);
+    linear_solver = std::make_unique<solvers::LinearSolver>(prm);
     give_near_null_space();
     adaptation
       = std::make_unique<adaptation::MeshAdaptation<dim>>(refinement_parameters,
@@ -127,7 +117,7 @@ namespace tissuefem::problems
   Elasticity<dim>::give_near_null_space()
   {
     // Only AMG uses them; they belong to the current mesh.
-    if (linear_solver_parameters.type == "cg amg")
+    if (linear_solver->uses_near_null_space())
       linear_solver->set_near_null_space(
         scene->discretization->rigid_body_modes(), dim);
   }
@@ -555,7 +545,7 @@ namespace tissuefem::problems
 
     screen << "tissuefem: " << dim << "D elasticity, " << scene->describe()
            << ", integrator '" << time_parameters.integrator
-           << "', linear solver '" << linear_solver_parameters.type << "'\n"
+           << "', linear solver '" << linear_solver->name() << "'\n"
            << geometry::describe_boundary_ids(scene->triangulation) << '\n'
            << scene->boundary_conditions->describe_load_factor() << '\n'
            << scene->boundary_conditions->describe_self_contact() << std::endl;

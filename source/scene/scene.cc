@@ -13,14 +13,47 @@ namespace tissuefem
 {
   namespace
   {
+    using Capabilities = time::Interface::Capabilities;
+
+    /// What the integrator 'Time integration/Integrator' names can take,
+    /// with the settings of @p prm.
+    Capabilities
+    integrator_capabilities(ParameterHandler &prm)
+    {
+      time::TimeParameters time_parameters;
+      time_parameters.parse_parameters(prm);
+      return time::IntegratorRegistry::instance()
+        .create(time_parameters.integrator, prm)
+        ->capabilities();
+    }
+
+    /// The registered integrators that, with their default settings, have
+    /// the capability @p has: "a, b or c", for messages.
+    std::string
+    integrators_with(bool Capabilities::*has)
+    {
+      ParameterHandler defaults;
+      time::TimeParameters::declare_parameters(defaults);
+      std::vector<std::string> names;
+      for (const auto &[name, entry] :
+           time::IntegratorRegistry::instance().all())
+        if (entry.create(defaults)->capabilities().*has)
+          names.push_back(name);
+      std::string list;
+      for (unsigned int i = 0; i < names.size(); ++i)
+        list += (i == 0                  ? ""
+                 : i + 1 == names.size() ? " or "
+                                         : ", ")
+                + names[i];
+      return list;
+    }
+
     /// Whether the run integrates in time (a manufactured solution then
     /// adds the inertial term to its body force).
     bool
     integrates_in_time(ParameterHandler &prm)
     {
-      time::TimeParameters time_parameters;
-      time_parameters.parse_parameters(prm);
-      return time_parameters.integrator != "quasistatic";
+      return integrator_capabilities(prm).in_time;
     }
   } // namespace
 
@@ -38,66 +71,52 @@ namespace tissuefem
 
   namespace
   {
-    /// Whether @p integrator begins each step (Operators::begin_step(),
-    /// where self contact takes its weights).
-    bool
-    begins_steps(const std::string &integrator)
-    {
-      return integrator == "backward Euler" || integrator == "quasistatic"
-             || integrator == "linearly implicit Euler";
-    }
-
-
     /**
-     * Only these integrators begin each step (Operators::begin_step(),
-     * where self contact takes its weights), pass the time of each force
-     * evaluation that a moving obstacle needs, and update the contact
-     * multipliers (Operators::augment()); others would ignore them unseen. The
-     * plain penalty is a force of (u, t): linearly implicit Euler and the
-     * damped central difference (without an active region) take it too.
+     * Rayleigh damping needs an integrator that applies it; self contact
+     * one that begins each step (where it takes its weights); contact with
+     * obstacles one that takes a penalty force of (u, t) (the penalty
+     * method, obstacles that may move) or one that updates contact
+     * multipliers (the augmented Lagrangian). Others would ignore them
+     * unseen.
      */
     template <int dim>
     void
-    check_state_dependent_loads(
+    check_integrator_capabilities(
       ParameterHandler                          &prm,
       const double                               self_contact_pressure,
       const std::vector<contact::Obstacle<dim>> &obstacles)
     {
       time::TimeParameters time_parameters;
       time_parameters.parse_parameters(prm);
-      const std::string &integrator = time_parameters.integrator;
-      const bool         implicit_one_step
-        = integrator == "backward Euler" || integrator == "quasistatic";
+      const Capabilities can      = integrator_capabilities(prm);
+      const std::string  not_this = " (not '" + time_parameters.integrator
+                                   + (can.taken_away.empty() ? "" : "': ")
+                                   + can.taken_away + "')";
+      for (const auto &[name, value] :
+           {std::pair("mass", time_parameters.rayleigh_mass),
+            std::pair("stiffness", time_parameters.rayleigh_stiffness)})
+        require(value == 0 || can.rayleigh_damping,
+                std::string("Time integration/Rayleigh ") + name + " damping",
+                "must be 0 unless Time integration/Integrator = "
+                  + integrators_with(&Capabilities::rayleigh_damping)
+                  + not_this);
+      require(self_contact_pressure == 0 || can.begins_steps,
+              "Boundary conditions/Self contact pressure",
+              "needs Time integration/Integrator = "
+                + integrators_with(&Capabilities::begins_steps) + not_this);
+      if (obstacles.empty())
+        return;
       prm.enter_subsection("Contact");
       const bool penalty = prm.get("Method") == "penalty";
       prm.leave_subsection();
-      prm.enter_subsection("Time integration");
-      prm.enter_subsection("Damped central difference");
-      const bool active_region = prm.get_double("Active region threshold") > 0;
-      prm.leave_subsection();
-      prm.leave_subsection();
-      const bool takes_penalty
-        = begins_steps(integrator)
-          || (integrator == "damped central difference" && !active_region);
-      const std::string needs
-        = "needs Time integration/Integrator = backward Euler or "
-          "quasistatic (not '"
-          + integrator + "')";
-      require(self_contact_pressure == 0 || begins_steps(integrator),
-              "Boundary conditions/Self contact pressure",
-              "needs Time integration/Integrator = backward Euler, "
-              "quasistatic or linearly implicit Euler (not '"
-                + integrator + "')");
-      require(
-        obstacles.empty() || implicit_one_step || (penalty && takes_penalty),
-        obstacles.empty() ? std::string() : obstacles.front().slot + "/Shape",
-        penalty ? "contact with obstacles needs Time "
-                  "integration/Integrator = backward Euler, "
-                  "quasistatic, linearly implicit Euler or damped "
-                  "central difference without an active region (not '"
-                    + integrator + "'"
-                    + (active_region ? " with an active region" : "") + ")"
-                : "contact by the augmented Lagrangian " + needs);
+      const auto needed = penalty ? &Capabilities::penalty_contact
+                                  : &Capabilities::augmented_lagrangian;
+      require(can.*needed,
+              obstacles.front().slot + "/Shape",
+              std::string("contact with obstacles ")
+                + (penalty ? "by a penalty" : "by the augmented Lagrangian")
+                + " needs Time integration/Integrator = "
+                + integrators_with(needed) + not_this);
     }
 
     /**
@@ -120,18 +139,19 @@ namespace tissuefem
           shear = std::max(shear, materials.constants[m].mu);
       time::TimeParameters time_parameters;
       time_parameters.parse_parameters(prm);
-      const std::string &integrator = time_parameters.integrator;
-      const bool         simplices = !mesh.all_reference_cells_are_hyper_cube();
-      std::string        why
+      const bool  takes     = integrator_capabilities(prm).begins_steps;
+      const bool  simplices = !mesh.all_reference_cells_are_hyper_cube();
+      std::string why
         = shear == 0   ? "no invertible neo-Hookean material"
           : !simplices ? "the invertible model on quadrilaterals or hexahedra, "
                          "which recover by elasticity alone"
-          : !begins_steps(integrator)
-            ? "integrator '" + integrator + "' does not take it"
+          : !takes
+            ? "integrator '" + time_parameters.integrator + "' does not take it"
             : "twice the shear modulus of the invertible "
               "neo-Hookean model on triangles or tetrahedra";
-      boundary.resolve_self_contact(
-        shear, shear > 0 && simplices && begins_steps(integrator), why);
+      boundary.resolve_self_contact(shear,
+                                    shear > 0 && simplices && takes,
+                                    why);
     }
   } // namespace
 
@@ -201,9 +221,9 @@ namespace tissuefem
 
     auto obstacles
       = contact::Obstacle<dim>::create_all(prm, parameter_directory);
-    check_state_dependent_loads(prm,
-                                boundary_parameters.self_contact_pressure,
-                                obstacles);
+    check_integrator_capabilities(prm,
+                                  boundary_parameters.self_contact_pressure,
+                                  obstacles);
 
     // A tool may hold a part only once it acts, and an obstacle only once
     // the part touches it; the check needs the constraints known up front.

@@ -55,10 +55,13 @@ namespace tissuefem::time
       prm.leave_subsection();
     }
 
-    bool
-    takes_rayleigh_damping() const override
+    Capabilities
+    capabilities() const override
     {
-      return true;
+      Capabilities c;
+      c.begins_steps = c.penalty_contact = c.augmented_lagrangian = true;
+      c.rayleigh_damping                                          = true;
+      return c;
     }
 
     void

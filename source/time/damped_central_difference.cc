@@ -91,6 +91,20 @@ namespace tissuefem::time
       prm.leave_subsection();
     }
 
+    /// A penalty contact force of (u, t), but not with an active region:
+    /// a frozen node would not feel an obstacle arrive.
+    Capabilities
+    capabilities() const override
+    {
+      Capabilities c;
+      c.penalty_contact = threshold == 0;
+      if (threshold > 0)
+        c.taken_away = "an active region ('Time integration/Damped central "
+                       "difference/Active region threshold' > 0) freezes "
+                       "nodes, which would not feel an obstacle arrive";
+      return c;
+    }
+
     void
     initialize(Context &c, State &state) override
     {

@@ -319,7 +319,7 @@ namespace tissuefem::time
     deferred_shift     = 0;
     const double alpha = context->time.rayleigh_mass;
     const double beta  = context->time.rayleigh_stiffness;
-    damped             = takes_rayleigh_damping() && (alpha > 0 || beta > 0);
+    damped = capabilities().rayleigh_damping && (alpha > 0 || beta > 0);
     if (!damped)
       return c;
     undamped_u_tilde         = u_tilde;

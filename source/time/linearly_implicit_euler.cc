@@ -83,10 +83,13 @@ namespace tissuefem::time
       return interval == 1;
     }
 
-    bool
-    takes_rayleigh_damping() const override
+    /// Contact multipliers are not updated: one linear solve a step.
+    Capabilities
+    capabilities() const override
     {
-      return true;
+      Capabilities c;
+      c.begins_steps = c.penalty_contact = c.rayleigh_damping = true;
+      return c;
     }
 
     void

@@ -39,6 +39,16 @@ namespace tissuefem::time
     {
     }
 
+    /// Equilibria: no inertia, so no damping either.
+    Capabilities
+    capabilities() const override
+    {
+      Capabilities c;
+      c.in_time      = false;
+      c.begins_steps = c.penalty_contact = c.augmented_lagrangian = true;
+      return c;
+    }
+
     void
     initialize(Context &c, State &state) override
     {

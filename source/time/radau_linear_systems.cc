@@ -106,12 +106,7 @@ namespace tissuefem::time
         pattern.compress();
         complex_matrix.reinit(pattern);
         // The 2n system is not symmetric: always a direct solver.
-        solvers::LinearSolverParameters direct;
-        direct.type               = "MUMPS";
-        direct.relative_tolerance = 1e-10;
-        direct.max_iterations     = 1;
-        direct.rebuild_factor     = 1;
-        complex_solver = std::make_unique<solvers::LinearSolver>(direct);
+        complex_solver = solvers::LinearSolver::with_defaults("MUMPS");
       }
     for (int r = 0; r < K.NumMyRows(); ++r)
       {

@@ -45,17 +45,10 @@ namespace
     A.compress(VectorOperation::insert);
     b.compress(VectorOperation::insert);
 
-    ParameterHandler prm;
-    solvers::LinearSolverParameters::declare_parameters(prm);
-    prm.enter_subsection("Linear solver");
-    prm.set("Type", type);
-    prm.leave_subsection();
-    solvers::LinearSolverParameters parameters;
-    parameters.parse_parameters(prm);
-    solvers::LinearSolver solver(parameters);
+    const auto solver = solvers::LinearSolver::with_defaults(type);
     try
       {
-        solver.solve(A, x, b);
+        solver->solve(A, x, b);
       }
     catch (const SolverError &e)
       {

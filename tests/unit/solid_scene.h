@@ -30,10 +30,7 @@ namespace tissuefem_tests
     {
       time_parameters.parse_parameters(prm);
       newton_parameters.parse_parameters(prm);
-      solvers::LinearSolverParameters linear_parameters;
-      linear_parameters.parse_parameters(prm);
-      linear_solver
-        = std::make_unique<solvers::LinearSolver>(linear_parameters);
+      linear_solver = std::make_unique<solvers::LinearSolver>(prm);
     }
 
     /// What an integrator drives: this scene's solid, time and Newton

@@ -51,7 +51,6 @@ namespace tissuefem::problems
     RunContext                           run_context;
     time::TimeParameters                 time_parameters;
     solvers::NewtonParameters            newton_parameters;
-    solvers::LinearSolverParameters      linear_solver_parameters;
     output::OutputParameters             output_parameters;
     adaptation::MeshRefinementParameters refinement_parameters;
 

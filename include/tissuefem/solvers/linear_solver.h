@@ -3,6 +3,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <tissuefem/base/parallel.h>
+#include <tissuefem/solvers/linear/interface.h>
 
 #include <memory>
 #include <string>
@@ -12,62 +13,48 @@ namespace tissuefem::solvers
 {
   using namespace dealii;
 
-  /// The 'Linear solver' subsection.
-  struct LinearSolverParameters
-  {
-    static void
-    declare_parameters(ParameterHandler &prm);
-    void
-    parse_parameters(ParameterHandler &prm);
-
-    std::string  type;
-    double       relative_tolerance;
-    unsigned int max_iterations;
-    double       rebuild_factor;
-  };
-
-  /// What the solver did since it was created.
-  struct LinearSolverStatistics
-  {
-    unsigned int solves = 0;
-    /// Krylov iterations summed over solves (0 for direct solvers).
-    unsigned int iterations = 0;
-    /// Symbolic factorizations or AMG hierarchies built.
-    unsigned int setups = 0;
-    /// Numeric factorizations (direct solvers).
-    unsigned int factorizations = 0;
-    double       setup_seconds  = 0;
-  };
-
   /**
-   * Solves the Newton systems J du = -R. Choices ('Linear solver/Type'):
-   * - MUMPS (default, 'direct' is the same): parallel sparse LU through
-   *   Trilinos Amesos; the symbolic analysis is done once per sparsity
-   *   pattern and kept across Newton iterations and steps;
-   * - KLU: Amesos' serial LU (the matrix is gathered on one process);
-   *   symbolic analysis kept as for MUMPS;
-   * - UMFPACK: SuiteSparse's LU, one process only; symbolic analysis kept;
-   * - cg amg: conjugate gradients preconditioned by Trilinos ML algebraic
-   *   multigrid whose near-null space is the rigid-body modes. The
-   *   hierarchy is built once and kept across Newton iterations and steps
-   *   while it works: it is rebuilt when a solve needs more than
-   *   'AMG rebuild factor' times the iterations of the first solve after
-   *   the last build, or fails.
+   * Solves the Newton systems J du = -R with the method 'Linear solver/Type'
+   * names, one of those registered in source/solvers/linear/ (MUMPS, KLU,
+   * UMFPACK, cg amg, ...: linear::Interface). What every method shares is
+   * here: the choice by name, forgetting what was kept when the matrix
+   * object changes, the statistics, and one form of failure (SolverError
+   * "linear solver (<type>) failed: why").
    * Before the matrix is destroyed or reinitialized (the mesh changes),
    * call reset(): a kept factorization refers to it.
    */
   class LinearSolver
   {
   public:
-    explicit LinearSolver(const LinearSolverParameters &parameters);
+    /// The 'Linear solver' subsection: 'Type' and every registered
+    /// method's own entries.
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    /// The method 'Linear solver/Type' of @p prm names, reading its own
+    /// entries.
+    explicit LinearSolver(ParameterHandler &prm);
+
+    /// The method @p type with its default settings.
+    static std::unique_ptr<LinearSolver>
+    with_defaults(const std::string &type);
+
     ~LinearSolver();
 
-    /// Near-null-space vectors for AMG (rigid-body modes), distributed like
-    /// the unknowns, whose dofs come in blocks of @p components consecutive
-    /// indices per node (as deal.II numbers an FESystem's dofs).
+    /// Near-null-space vectors (rigid-body modes) for methods that use them
+    /// (see uses_near_null_space()), distributed like the unknowns, whose
+    /// dofs come in blocks of @p components consecutive indices per node
+    /// (as deal.II numbers an FESystem's dofs).
     void
     set_near_null_space(const std::vector<VectorType> &modes,
                         const unsigned int             components);
+
+    /// Whether set_near_null_space() is of use (algebraic multigrid).
+    bool
+    uses_near_null_space() const
+    {
+      return method->uses_near_null_space();
+    }
 
     /// Forgets factorizations and preconditioners (the matrix layout
     /// changed).
@@ -93,11 +80,18 @@ namespace tissuefem::solvers
           const bool        refactorize        = true,
           const double      relative_tolerance = 0);
 
-    /// Whether the type is a sparse direct solver (not 'cg amg').
+    /// Whether the method factorizes the matrix (not 'cg amg').
     bool
     direct() const
     {
-      return parameters.type != "cg amg";
+      return method->direct();
+    }
+
+    /// The name the method was chosen by ('direct' reads 'MUMPS').
+    const std::string &
+    name() const
+    {
+      return type;
     }
 
     const LinearSolverStatistics &
@@ -107,9 +101,10 @@ namespace tissuefem::solvers
     }
 
   private:
-    class Implementation;
-    LinearSolverParameters          parameters;
-    std::unique_ptr<Implementation> implementation;
-    LinearSolverStatistics          stats;
+    std::string                        type;
+    std::unique_ptr<linear::Interface> method;
+    /// The matrix object the method's kept state belongs to.
+    const void            *matrix = nullptr;
+    LinearSolverStatistics stats;
   };
 } // namespace tissuefem::solvers

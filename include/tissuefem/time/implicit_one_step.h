@@ -171,7 +171,7 @@ namespace tissuefem::time
     /**
      * Rayleigh damping D = alpha M + beta K ('Rayleigh mass damping',
      * 'Rayleigh stiffness damping'), for the methods whose velocity is
-     * v_{n+1} = (u_{n+1} - u_n)/h (takes_rayleigh_damping()). Their damped
+     * v_{n+1} = (u_{n+1} - u_n)/h (capabilities().rayleigh_damping). Their damped
      * step,
      *
      *   c M (u - u_tilde) + alpha/h M (u - u_n) + r(u) + beta/h (r(u) -

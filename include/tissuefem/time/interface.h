@@ -158,13 +158,39 @@ namespace tissuefem::time
       (void)scalars;
     }
 
-    /// Whether the integrator applies 'Rayleigh mass damping' and
-    /// 'Rayleigh stiffness damping' (a run with either non-zero and an
-    /// integrator that does not is refused).
-    virtual bool
-    takes_rayleigh_damping() const
+    /**
+     * What the integrator can be given besides elastic forces and fixed
+     * loads. The scene and the run refuse what it cannot take before the
+     * first step, naming the parameter, instead of comparing integrator
+     * names; an integrator that adds a capability says so here alone.
+     */
+    struct Capabilities
     {
-      return false;
+      /// Whether it integrates in time (false: a sequence of equilibria,
+      /// whose loads ramp by default and which needs every part held).
+      bool in_time = true;
+      /// Whether it begins each step through Operators::begin_step()
+      /// (where self contact takes its weights) and passes the time of
+      /// each force evaluation (which a moving obstacle needs).
+      bool begins_steps = false;
+      /// Whether it takes contact with obstacles as a penalty force of
+      /// (u, t).
+      bool penalty_contact = false;
+      /// Whether it re-solves a step for contact multipliers that moved
+      /// (Operators::augment(): the augmented Lagrangian).
+      bool augmented_lagrangian = false;
+      /// Whether it applies 'Rayleigh mass damping' and 'Rayleigh
+      /// stiffness damping'.
+      bool rayleigh_damping = false;
+      /// What the settings given take away that the integrator's defaults
+      /// have, for messages; empty if nothing.
+      std::string taken_away;
+    };
+
+    virtual Capabilities
+    capabilities() const
+    {
+      return {};
     }
 
     /// What the integrator did over the whole run, for the screen (several

@@ -1,0 +1,205 @@
+// Every registered linear solver ('Linear solver/Type') against
+// manufactured solutions: x chosen at random (fixed seed), b = A x, on a
+// 2D five-point Laplacian (symmetric positive definite, as Newton's
+// matrices of stable states are) whose rows are split among the processes.
+// Each method must recover x (direct: to 1e-12 relative, iterative: to
+// 1e-6, from 'Relative tolerance' 1e-10), again for a second right-hand
+// side without refactorizing, again after the matrix values change, and
+// on a new matrix object of another pattern (the kept state is dropped);
+// a loose forcing term must still meet its residual bound. Checks are
+// gathered over the registered methods, so this output does not change
+// when one is added; a method that refuses the number of processes must
+// say so naming the parameter.
+
+#include <deal.II/base/index_set.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
+
+#include <tissuefem/base/input_error.h>
+#include <tissuefem/base/parallel.h>
+#include <tissuefem/solvers/linear_solver.h>
+
+#include "../tests.h"
+
+#include <cmath>
+#include <string>
+
+using namespace dealii;
+using namespace tissuefem;
+
+namespace
+{
+  /// The rows this process owns of @p n, in one contiguous range.
+  IndexSet
+  owned_rows(const unsigned int n)
+  {
+    const unsigned int p = Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
+    const unsigned int r = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
+    IndexSet           owned(n);
+    owned.add_range(n * r / p, n * (r + 1) / p);
+    return owned;
+  }
+
+  /// The m x m five-point Laplacian (4 on the diagonal, -1 to each grid
+  /// neighbour; Dirichlet rows implied outside) times @p scale plus
+  /// @p shift on the diagonal; m = 1 row of a grid is a 1D chain when
+  /// @p chain.
+  void
+  laplacian(MatrixType        &A,
+            const unsigned int m,
+            const bool         chain,
+            const double       scale,
+            const double       shift)
+  {
+    const unsigned int n     = chain ? m : m * m;
+    const IndexSet     owned = owned_rows(n);
+    if (A.m() != n)
+      {
+        TrilinosWrappers::SparsityPattern pattern(owned, MPI_COMM_WORLD);
+        for (const auto i : owned)
+          for (const long j : {long(i) - long(m),
+                               long(i) - 1,
+                               long(i),
+                               long(i) + 1,
+                               long(i) + long(m)})
+            if (j >= 0 && j < long(n))
+              pattern.add(i, j);
+        pattern.compress();
+        A.reinit(pattern);
+      }
+    for (const auto i : owned)
+      {
+        const unsigned int x = chain ? i : i % m, y = chain ? 0 : i / m;
+        A.set(i, i, (chain ? 2. : 4.) * scale + shift);
+        if (x > 0)
+          A.set(i, i - 1, -scale);
+        if (x + 1 < m)
+          A.set(i, i + 1, -scale);
+        if (!chain && y > 0)
+          A.set(i, i - m, -scale);
+        if (!chain && y + 1 < m)
+          A.set(i, i + m, -scale);
+      }
+    A.compress(VectorOperation::insert);
+  }
+
+  /// A random vector in [1, 3) of A's row layout (the same on any number
+  /// of processes: drawn for every row, kept for the owned ones).
+  VectorType
+  random_vector(const MatrixType &A, const std::uint64_t seed)
+  {
+    const IndexSet          owned = owned_rows(A.m());
+    VectorType              x(owned, MPI_COMM_WORLD);
+    tissuefem_tests::Random random(seed);
+    for (unsigned int i = 0; i < A.m(); ++i)
+      {
+        const double value = 2. + random.uniform();
+        if (owned.is_element(i))
+          x[i] = value;
+      }
+    x.compress(VectorOperation::insert);
+    return x;
+  }
+
+  /// max |x - exact| / max |exact|.
+  double
+  relative_error(const VectorType &x, const VectorType &exact)
+  {
+    VectorType difference = x;
+    difference -= exact;
+    return difference.linfty_norm() / exact.linfty_norm();
+  }
+
+  /// Solves A x = A exact and checks x against exact.
+  void
+  check_solve(const std::string     &name,
+              solvers::LinearSolver &solver,
+              const MatrixType      &A,
+              const std::uint64_t    seed,
+              const bool             refactorize,
+              const std::string     &what)
+  {
+    const VectorType exact = random_vector(A, seed);
+    VectorType       b(exact), x(exact);
+    A.vmult(b, exact);
+    x = 0;
+    solver.solve(A, x, b, refactorize);
+    const double error = relative_error(x, exact);
+    tissuefem_tests::check(error <= (solver.direct() ? 1e-12 : 1e-6),
+                           "solver " + name + what,
+                           "relative error " + std::to_string(error));
+  }
+
+  void
+  check_method(const std::string &name)
+  {
+    std::unique_ptr<solvers::LinearSolver> solver;
+    try
+      {
+        solver = solvers::LinearSolver::with_defaults(name);
+      }
+    catch (const InputError &e)
+      {
+        const std::string message = e.what();
+        tissuefem_tests::check(parallel_tools::n_processes() > 1
+                                 && message.find("Linear solver/Type")
+                                      != std::string::npos,
+                               "solver " + name
+                                 + " runs here or refuses naming the "
+                                   "parameter",
+                               message);
+        return;
+      }
+    tissuefem_tests::check(true,
+                           "solver " + name
+                             + " runs here or refuses naming the parameter");
+    MatrixType A;
+    laplacian(A, 24, false, 1., 0.);
+    check_solve(name, *solver, A, 1, true, " recovers a manufactured solution");
+    const auto kept = solver->statistics();
+    check_solve(name, *solver, A, 2, false, " solves a second right-hand side");
+    tissuefem_tests::check(solver->statistics().setups == kept.setups
+                             && solver->statistics().factorizations
+                                  == kept.factorizations,
+                           "solver " + name
+                             + " keeps its factorization or hierarchy for it");
+    laplacian(A, 24, false, 3., 1.);
+    check_solve(name, *solver, A, 3, true, " follows new matrix values");
+    MatrixType chain;
+    laplacian(chain, 300, true, 1., 1e-2);
+    check_solve(
+      name, *solver, chain, 4, true, " follows a new matrix and pattern");
+
+    // A loose forcing term still bounds the residual.
+    const VectorType exact = random_vector(chain, 5);
+    VectorType       b(exact), x(exact), r(exact);
+    chain.vmult(b, exact);
+    solver->solve(chain, x, b, true, 1e-3);
+    chain.residual(r, x, b);
+    tissuefem_tests::check(r.l2_norm() <= 1e-3 * b.l2_norm(),
+                           "solver " + name
+                             + " meets a loose forcing term's bound",
+                           std::to_string(r.l2_norm() / b.l2_norm()));
+    // What a direct solver keeps refers to the matrix: forget it before
+    // the matrices go.
+    solver->reset();
+  }
+} // namespace
+
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  tissuefem_tests::OneWriter       writer;
+  {
+    tissuefem_tests::EachModel each("solver", "each registered method");
+    for (const auto &[name, entry] :
+         solvers::linear::LinearSolverRegistry::instance().all())
+      {
+        each.model(name);
+        check_method(name);
+      }
+  }
+  return tissuefem_tests::exit_status();
+}
