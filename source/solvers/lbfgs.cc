@@ -1,6 +1,7 @@
 #include <tissuefem/base/input_error.h>
 #include <tissuefem/base/timing.h>
 #include <tissuefem/solvers/lbfgs.h>
+#include <tissuefem/solvers/stopping.h>
 
 #include <algorithm>
 #include <chrono>
@@ -89,23 +90,9 @@ namespace tissuefem::solvers
     std::deque<Pair> pairs;
     for (;;)
       {
-        if (!std::isfinite(norm))
-          {
-            result.failure = "residual is not finite";
-            return result;
-          }
-        if (norm <= parameters.absolute_residual_tolerance
-            || (result.iterations > 0
-                && norm <= parameters.relative_residual_tolerance * first_norm))
-          {
-            result.converged = true;
-            return result;
-          }
-        if (result.iterations == max_iterations)
-          {
-            result.failure = no_convergence_message(max_iterations, norm);
-            return result;
-          }
+        if (stop_before_iteration(
+              parameters, norm, first_norm, max_iterations, result))
+          return result;
         try
           {
             direction(pairs, R, h0, d);

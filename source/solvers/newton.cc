@@ -2,6 +2,7 @@
 #include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/base/timing.h>
 #include <tissuefem/solvers/newton.h>
+#include <tissuefem/solvers/stopping.h>
 
 #include <algorithm>
 #include <chrono>
@@ -346,23 +347,8 @@ namespace tissuefem::solvers
     bool
     NewtonIteration::finished_before_iteration()
     {
-      if (!std::isfinite(norm))
-        {
-          result.failure = "residual is not finite";
-          return true;
-        }
-      if (residual_converged())
-        {
-          result.converged = true;
-          return true;
-        }
-      if (result.iterations == parameters.max_iterations)
-        {
-          result.failure
-            = no_convergence_message(parameters.max_iterations, norm);
-          return true;
-        }
-      return false;
+      return stop_before_iteration(
+        parameters, norm, first_norm, parameters.max_iterations, result);
     }
 
 

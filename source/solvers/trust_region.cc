@@ -1,6 +1,7 @@
 #include <tissuefem/base/input_error.h>
 #include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/base/timing.h>
+#include <tissuefem/solvers/stopping.h>
 #include <tissuefem/solvers/trust_region.h>
 
 #include <algorithm>
@@ -101,24 +102,9 @@ namespace tissuefem::solvers
 
     while (true)
       {
-        if (!std::isfinite(norm))
-          {
-            result.failure = "residual is not finite";
-            return result;
-          }
-        if (norm <= parameters.absolute_residual_tolerance
-            || (result.iterations > 0
-                && norm <= parameters.relative_residual_tolerance * first_norm))
-          {
-            result.converged = true;
-            return result;
-          }
-        if (result.iterations >= parameters.max_iterations)
-          {
-            result.failure
-              = no_convergence_message(parameters.max_iterations, norm);
-            return result;
-          }
+        if (stop_before_iteration(
+              parameters, norm, first_norm, parameters.max_iterations, result))
+          return result;
 
         // The Newton step and the curvatures of the model.
         rhs.equ(-1., residual);

@@ -160,12 +160,7 @@ namespace tissuefem::time
             VectorType  &u_tilde,
             VectorType  &initial_guess) const override
     {
-      u_tilde = old_state.u;
-      u_tilde.add(h, old_state.v);
-      initial_guess = u_tilde;
-      // u_{n+1} = u_tilde + h^2 a_{n+1}, with a_{n+1} ~ a_n.
-      if (context->time.extrapolate)
-        initial_guess.add(h * h, old_state.a);
+      backward_euler_prediction(old_state, h, u_tilde, initial_guess);
     }
 
     void

@@ -186,11 +186,7 @@ namespace tissuefem::time
   {
     auto        &solid = context->solid;
     const double t_new = state.time + h;
-    if (next.u.size() != state.u.size())
-      solid.initialize_vector(next.u);
-    predict(state, h, u_tilde, next.u);
-    solid.begin_step(state.u, state.time);
-    const double c = damp(state, h, mass_coefficient(h), t_new);
+    const double c     = begin_attempt(state, h, next);
     // The three-field element's cell unknowns ('Newton solver/Mean
     // dilatation update'): Newton updates them with u within this step.
     solid::IterationUnknowns *unknowns = context->newton.three_field_dilatation
@@ -306,6 +302,34 @@ namespace tissuefem::time
     solid.apply_dirichlet_values(t_new, next.u);
     finish(state, rates_u_tilde(), h, next);
     return {};
+  }
+
+
+  double
+  ImplicitOneStep::begin_attempt(const State &state,
+                                 const double h,
+                                 State       &next)
+  {
+    auto &solid = context->solid;
+    if (next.u.size() != state.u.size())
+      solid.initialize_vector(next.u);
+    predict(state, h, u_tilde, next.u);
+    solid.begin_step(state.u, state.time);
+    return damp(state, h, mass_coefficient(h), state.time + h);
+  }
+
+
+  void
+  ImplicitOneStep::backward_euler_prediction(const State &old_state,
+                                             const double h,
+                                             VectorType  &u_tilde,
+                                             VectorType  &initial_guess) const
+  {
+    u_tilde = old_state.u;
+    u_tilde.add(h, old_state.v);
+    initial_guess = u_tilde;
+    if (context->time.extrapolate)
+      initial_guess.add(h * h, old_state.a);
   }
 
 

@@ -89,6 +89,21 @@ namespace tissuefem::time
                               const double      h,
                               State            &new_state);
 
+    /// Backward Euler's u_tilde = u_n + h v_n (problem session eq 4) and
+    /// Newton's initial guess: u_tilde, plus h^2 a_n (a_{n+1} ~ a_n) with
+    /// 'Extrapolate' (context's time parameters).
+    void
+    backward_euler_prediction(const State &old_state,
+                              const double h,
+                              VectorType  &u_tilde,
+                              VectorType  &initial_guess) const;
+
+    /// What every attempt begins with: @p next.u sized, predict() into
+    /// u_tilde and @p next.u, the solid's step begun at @p state, the
+    /// damping folded in (damp()). Returns the step's mass coefficient.
+    double
+    begin_attempt(const State &state, const double h, State &next);
+
     Context *context = nullptr;
 
     /**
@@ -171,8 +186,8 @@ namespace tissuefem::time
     /**
      * Rayleigh damping D = alpha M + beta K ('Rayleigh mass damping',
      * 'Rayleigh stiffness damping'), for the methods whose velocity is
-     * v_{n+1} = (u_{n+1} - u_n)/h (capabilities().rayleigh_damping). Their damped
-     * step,
+     * v_{n+1} = (u_{n+1} - u_n)/h (capabilities().rayleigh_damping). Their
+     * damped step,
      *
      *   c M (u - u_tilde) + alpha/h M (u - u_n) + r(u) + beta/h (r(u) -
      *   r(u_n)) = 0,
