@@ -88,35 +88,44 @@ namespace tissuefem
     {
       time::TimeParameters time_parameters;
       time_parameters.parse_parameters(prm);
-      const Capabilities can      = integrator_capabilities(prm);
-      const std::string  not_this = " (not '" + time_parameters.integrator
-                                   + (can.taken_away.empty() ? "" : "': ")
-                                   + can.taken_away + "')";
+      const Capabilities can = integrator_capabilities(prm);
+      // The lists of integrators are made only for a message (each
+      // constructs every registered integrator).
+      const auto refuse = [&](const std::string &parameter,
+                              const std::string &what,
+                              bool Capabilities::*needed,
+                              const std::string  &why = "") {
+        throw InputError("Parameter '" + parameter + "': " + what
+                         + " Time integration/Integrator = "
+                         + integrators_with(needed) + " (not '"
+                         + time_parameters.integrator + "'"
+                         + (why.empty() ? "" : ": " + why) + ")");
+      };
       for (const auto &[name, value] :
            {std::pair("mass", time_parameters.rayleigh_mass),
             std::pair("stiffness", time_parameters.rayleigh_stiffness)})
-        require(value == 0 || can.rayleigh_damping,
-                std::string("Time integration/Rayleigh ") + name + " damping",
-                "must be 0 unless Time integration/Integrator = "
-                  + integrators_with(&Capabilities::rayleigh_damping)
-                  + not_this);
-      require(self_contact_pressure == 0 || can.begins_steps,
-              "Boundary conditions/Self contact pressure",
-              "needs Time integration/Integrator = "
-                + integrators_with(&Capabilities::begins_steps) + not_this);
+        if (value != 0 && !can.rayleigh_damping)
+          refuse(std::string("Time integration/Rayleigh ") + name + " damping",
+                 "must be 0 unless",
+                 &Capabilities::rayleigh_damping);
+      if (self_contact_pressure != 0 && !can.begins_steps)
+        refuse("Boundary conditions/Self contact pressure",
+               "needs",
+               &Capabilities::begins_steps);
       if (obstacles.empty())
         return;
       prm.enter_subsection("Contact");
       const bool penalty = prm.get("Method") == "penalty";
       prm.leave_subsection();
-      const auto needed = penalty ? &Capabilities::penalty_contact
-                                  : &Capabilities::augmented_lagrangian;
-      require(can.*needed,
-              obstacles.front().slot + "/Shape",
-              std::string("contact with obstacles ")
-                + (penalty ? "by a penalty" : "by the augmented Lagrangian")
-                + " needs Time integration/Integrator = "
-                + integrators_with(needed) + not_this);
+      if (penalty && !can.penalty_contact)
+        refuse(obstacles.front().slot + "/Shape",
+               "contact with obstacles by a penalty needs",
+               &Capabilities::penalty_contact,
+               can.taken_away);
+      if (!penalty && !can.augmented_lagrangian)
+        refuse(obstacles.front().slot + "/Shape",
+               "contact with obstacles by the augmented Lagrangian needs",
+               &Capabilities::augmented_lagrangian);
     }
 
     /**

@@ -85,8 +85,15 @@ namespace tissuefem::solvers
         return result;
       }
     result.residual_norms.push_back(norm);
-    const double     first_norm = norm;
-    double           E          = energy_or_infinity(energy, u, result);
+    const double first_norm = norm;
+    double       E          = energy_or_infinity(energy, u, result);
+    if (!std::isfinite(E))
+      {
+        // No line search on the energy from here; the caller retries
+        // with a fresh Hessian or a smaller step.
+        result.failure = "the energy of the initial guess is not finite";
+        return result;
+      }
     std::deque<Pair> pairs;
     for (;;)
       {
@@ -145,8 +152,12 @@ namespace tissuefem::solvers
             pair.s -= u;
             pair.y -= R;
             const double curvature = pair.y * pair.s;
-            const bool   converged_by_update
-              = alpha == 1
+            // A small full step says the iterate is near the solution only
+            // where the residual contracts too (as Newton with a kept
+            // Jacobian requires, 'Reuse contraction'): a poor Hessian
+            // can make small steps far from it.
+            const bool converged_by_update
+              = alpha == 1 && trial_norm <= parameters.reuse_contraction * norm
                 && (pair.s.l2_norm()
                       <= parameters.update_tolerance * (1 + trial.l2_norm())
                     || pair.s.linfty_norm()

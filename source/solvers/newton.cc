@@ -139,7 +139,8 @@ namespace tissuefem::solvers
                       "With 'Jacobian reuse': the largest ratio |R_k+1| / "
                       "|R_k| of residual norms accepted with a kept "
                       "Jacobian; above it the next iteration assembles "
-                      "and factorizes anew.");
+                      "and factorizes anew. The quasi-Newton backward "
+                      "Euler's update test asks for the same contraction.");
     prm.declare_entry(
       "Displacement tolerance",
       "1e-8",

@@ -230,6 +230,9 @@ namespace tissuefem::time
       report.assembly_seconds += result.assembly_seconds;
       report.solve_seconds += result.solve_seconds;
       previous_iterations = result.iterations;
+      record_iterations(result.iterations);
+      if (!result.residual_norms.empty())
+        report.residual_norm = result.residual_norms.back();
       return result.converged ? std::string() : result.failure;
     }
 

@@ -26,8 +26,10 @@ namespace tissuefem::solvers
    * infinite (an inverted element) and the trial is then shortened.
    * Converged by Newton's tests of @p parameters: |R| <= absolute
    * tolerance, or |R| <= relative tolerance times the first |R|, or, after
-   * a full step s, |s| <= update tolerance (1 + |u|) or max |s| <=
-   * displacement tolerance times @p length_scale. At most
+   * a full step s that contracted |R| by 'Reuse contraction' at least,
+   * |s| <= update tolerance (1 + |u|) or max |s| <= displacement tolerance
+   * times @p length_scale. Fails at once where the energy of @p u is not
+   * finite. At most
    * @p max_iterations iterations. The result's iterations are L-BFGS
    * iterations, its jacobians 0.
    */

@@ -255,6 +255,15 @@ namespace tissuefem::time
     double
     energy(const VectorType &u, const double c, const double time);
 
+    /// Tells the step controller how many iterations the step's solve
+    /// took (what 'Optimal Newton iterations' weighs), for methods that
+    /// override attempt().
+    void
+    record_iterations(const unsigned int iterations)
+    {
+      last_iterations = iterations;
+    }
+
     /// u_tilde of the step being attempted (see predict()).
     VectorType u_tilde;
 

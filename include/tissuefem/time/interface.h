@@ -182,8 +182,8 @@ namespace tissuefem::time
       /// Whether it applies 'Rayleigh mass damping' and 'Rayleigh
       /// stiffness damping'.
       bool rayleigh_damping = false;
-      /// What the settings given take away that the integrator's defaults
-      /// have, for messages; empty if nothing.
+      /// What the settings given take away of penalty contact, which the
+      /// integrator's defaults take, for messages; empty if nothing.
       std::string taken_away;
     };
 
