@@ -93,7 +93,7 @@ namespace tissuefem::postprocess
       return;
     const auto &state     = step.state;
     const auto  reactions = this->context->scene.solid->reaction_forces(
-      state.u, state.a, state.time, boundary_ids);
+      state.u, state.a, state.time, state.damping, boundary_ids);
     if (!parallel_tools::is_root())
       return;
     const bool summarize = this->context->summary.due(step.number);

@@ -15,17 +15,28 @@ namespace tissuefem
   {
     using Capabilities = time::Interface::Capabilities;
 
-    /// What the integrator 'Time integration/Integrator' names can take,
-    /// with the settings of @p prm.
-    Capabilities
-    integrator_capabilities(ParameterHandler &prm)
+    /// The integrator 'Time integration/Integrator' names, and what it can
+    /// take with the settings of @p prm (asked once: building an
+    /// integrator reads its parameters).
+    struct ChosenIntegrator
     {
-      time::TimeParameters time_parameters;
-      time_parameters.parse_parameters(prm);
-      return time::IntegratorRegistry::instance()
-        .create(time_parameters.integrator, prm)
-        ->capabilities();
-    }
+      explicit ChosenIntegrator(ParameterHandler &prm)
+      {
+        time::TimeParameters time_parameters;
+        time_parameters.parse_parameters(prm);
+        name               = time_parameters.integrator;
+        rayleigh_mass      = time_parameters.rayleigh_mass;
+        rayleigh_stiffness = time_parameters.rayleigh_stiffness;
+        can                = time::IntegratorRegistry::instance()
+                .create(name, prm)
+                ->capabilities();
+      }
+
+      std::string  name;
+      double       rayleigh_mass      = 0;
+      double       rayleigh_stiffness = 0;
+      Capabilities can;
+    };
 
     /// The registered integrators that, with their default settings, have
     /// the capability @p has: "a, b or c", for messages.
@@ -46,14 +57,6 @@ namespace tissuefem
                                          : ", ")
                 + names[i];
       return list;
-    }
-
-    /// Whether the run integrates in time (a manufactured solution then
-    /// adds the inertial term to its body force).
-    bool
-    integrates_in_time(ParameterHandler &prm)
-    {
-      return integrator_capabilities(prm).in_time;
     }
   } // namespace
 
@@ -83,12 +86,11 @@ namespace tissuefem
     void
     check_integrator_capabilities(
       ParameterHandler                          &prm,
+      const ChosenIntegrator                    &integrator,
       const double                               self_contact_pressure,
       const std::vector<contact::Obstacle<dim>> &obstacles)
     {
-      time::TimeParameters time_parameters;
-      time_parameters.parse_parameters(prm);
-      const Capabilities can = integrator_capabilities(prm);
+      const Capabilities &can = integrator.can;
       // The lists of integrators are made only for a message (each
       // constructs every registered integrator).
       const auto refuse = [&](const std::string &parameter,
@@ -98,12 +100,12 @@ namespace tissuefem
         throw InputError("Parameter '" + parameter + "': " + what
                          + " Time integration/Integrator = "
                          + integrators_with(needed) + " (not '"
-                         + time_parameters.integrator + "'"
+                         + integrator.name + "'"
                          + (why.empty() ? "" : ": " + why) + ")");
       };
       for (const auto &[name, value] :
-           {std::pair("mass", time_parameters.rayleigh_mass),
-            std::pair("stiffness", time_parameters.rayleigh_stiffness)})
+           {std::pair("mass", integrator.rayleigh_mass),
+            std::pair("stiffness", integrator.rayleigh_stiffness)})
         if (value != 0 && !can.rayleigh_damping)
           refuse(std::string("Time integration/Rayleigh ") + name + " damping",
                  "must be 0 unless",
@@ -137,7 +139,7 @@ namespace tissuefem
      */
     template <int dim>
     void
-    resolve_self_contact(ParameterHandler                    &prm,
+    resolve_self_contact(const ChosenIntegrator              &integrator,
                          const materials::MaterialParameters &materials,
                          boundary::BoundaryParameters        &boundary,
                          const Triangulation<dim>            &mesh)
@@ -146,18 +148,15 @@ namespace tissuefem
       for (unsigned int m = 0; m < materials.model_names.size(); ++m)
         if (materials.model_names[m] == "invertible neo-Hookean")
           shear = std::max(shear, materials.constants[m].mu);
-      time::TimeParameters time_parameters;
-      time_parameters.parse_parameters(prm);
-      const bool  takes     = integrator_capabilities(prm).begins_steps;
+      const bool  takes     = integrator.can.begins_steps;
       const bool  simplices = !mesh.all_reference_cells_are_hyper_cube();
       std::string why
         = shear == 0   ? "no invertible neo-Hookean material"
           : !simplices ? "the invertible model on quadrilaterals or hexahedra, "
                          "which recover by elasticity alone"
-          : !takes
-            ? "integrator '" + time_parameters.integrator + "' does not take it"
-            : "twice the shear modulus of the invertible "
-              "neo-Hookean model on triangles or tetrahedra";
+          : !takes     ? "integrator '" + integrator.name + "' does not take it"
+                       : "twice the shear modulus of the invertible "
+                         "neo-Hookean model on triangles or tetrahedra";
       boundary.resolve_self_contact(shear,
                                     shear > 0 && simplices && takes,
                                     why);
@@ -184,6 +183,7 @@ namespace tissuefem
       = std::make_unique<materials::MaterialSet<dim>>(material_parameters, prm);
     materials->check_covers(triangulation);
 
+    const ChosenIntegrator       integrator(prm);
     boundary::BoundaryParameters boundary_parameters;
     boundary_parameters.parse_parameters(prm);
     {
@@ -195,9 +195,9 @@ namespace tissuefem
       const std::string end_time = prm.get("End time");
       prm.leave_subsection();
       boundary_parameters.resolve_load_factor(
-        !integrates_in_time(prm) && !manufactured_parameters.enabled, end_time);
+        !integrator.can.in_time && !manufactured_parameters.enabled, end_time);
     }
-    resolve_self_contact<dim>(prm,
+    resolve_self_contact<dim>(integrator,
                               material_parameters,
                               boundary_parameters,
                               triangulation);
@@ -224,19 +224,20 @@ namespace tissuefem
           manufactured_parameters,
           *materials,
           triangulation,
-          integrates_in_time(prm));
+          integrator.can.in_time);
         manufactured->impose_on(*boundary_conditions);
       }
 
     auto obstacles
       = contact::Obstacle<dim>::create_all(prm, parameter_directory);
     check_integrator_capabilities(prm,
+                                  integrator,
                                   boundary_parameters.self_contact_pressure,
                                   obstacles);
 
     // A tool may hold a part only once it acts, and an obstacle only once
     // the part touches it; the check needs the constraints known up front.
-    if (!integrates_in_time(prm) && tools.empty() && obstacles.empty())
+    if (!integrator.can.in_time && tools.empty() && obstacles.empty())
       check_every_part_held();
 
     solid::FiniteElementParameters fe_parameters;

@@ -177,13 +177,14 @@ namespace tissuefem::solid
     const VectorType                      &u,
     const VectorType                      &acceleration,
     const double                           time,
+    const RayleighDamping                 &damping,
     const std::vector<types::boundary_id> &boundary_ids)
   {
     std::vector<double> forces(boundary_ids.size() * dim, 0.);
     if (boundary_ids.empty())
       return forces;
     VectorType residual;
-    unconstrained_residual(u, acceleration, time, residual);
+    unconstrained_residual(u, acceleration, time, damping, residual);
     for (unsigned int b = 0; b < boundary_ids.size(); ++b)
       for (unsigned int c = 0; c < dim; ++c)
         {
@@ -204,33 +205,50 @@ namespace tissuefem::solid
 
   template <int dim>
   void
-  Solid<dim>::unconstrained_residual(const VectorType &u,
-                                     const VectorType &acceleration,
-                                     const double      time,
-                                     VectorType       &residual)
+  Solid<dim>::unconstrained_residual(const VectorType      &u,
+                                     const VectorType      &acceleration,
+                                     const double           time,
+                                     const RayleighDamping &damping,
+                                     VectorType            &residual)
   {
+    // With w = a + alpha v: R = M w + r(u), and with R_old = M w + r(u_old)
+    // the damped residual M a + r(u) + f_d is R + beta/h (R - R_old).
+    VectorType w(acceleration);
+    if (damping.alpha != 0)
+      {
+        w.add(damping.alpha / damping.step, u);
+        w.add(-damping.alpha / damping.step, damping.u_old);
+      }
     make_ghosted(u, ghosted_u);
-    make_ghosted(acceleration, ghosted_w);
+    make_ghosted(w, ghosted_w);
     Request request;
     request.u       = &ghosted_u;
     request.inertia = &ghosted_w;
     request.time    = time;
     request.rows    = &no_constraints;
     assemble(request, residual);
+    if (damping.beta == 0)
+      return;
+    VectorType old_residual;
+    make_ghosted(damping.u_old, ghosted_u);
+    assemble(request, old_residual);
+    const double ratio = damping.beta / damping.step;
+    residual.sadd(1 + ratio, -ratio, old_residual);
   }
 
 
   template <int dim>
   std::vector<double>
-  Solid<dim>::held_force(const VectorType &u,
-                         const VectorType &acceleration,
-                         const double      time)
+  Solid<dim>::held_force(const VectorType      &u,
+                         const VectorType      &acceleration,
+                         const double           time,
+                         const RayleighDamping &damping)
   {
     std::vector<double> force(dim, 0.);
     if (!held)
       return force;
     VectorType residual;
-    unconstrained_residual(u, acceleration, time, residual);
+    unconstrained_residual(u, acceleration, time, damping, residual);
     for (const auto &[dof, vertex, component] : held_dofs)
       if (discretization.locally_owned.is_element(dof))
         force[component] -= residual[dof];
@@ -307,14 +325,15 @@ namespace tissuefem::solid
     const VectorType &,                                                          \
     const VectorType &,                                                          \
     const double,                                                                \
+    const RayleighDamping &,                                                     \
     const std::vector<types::boundary_id> &);                                    \
   template void Solid<dim>::unconstrained_residual(const VectorType &,           \
                                                    const VectorType &,           \
                                                    const double,                 \
+                                                   const RayleighDamping &,      \
                                                    VectorType &);                \
-  template std::vector<double>   Solid<dim>::held_force(const VectorType &,      \
-                                                      const VectorType &,      \
-                                                      double);                 \
+  template std::vector<double> Solid<dim>::held_force(                           \
+    const VectorType &, const VectorType &, double, const RayleighDamping &);    \
   template bool                  Solid<dim>::changes_with_time() const;          \
   template std::optional<double> Solid<dim>::load_factor(const double) const;    \
   template double                Solid<dim>::load_factor_at(const double) const; \

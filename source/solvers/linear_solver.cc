@@ -22,11 +22,11 @@ namespace tissuefem::solvers
   LinearSolver::LinearSolver(ParameterHandler &prm)
   {
     prm.enter_subsection("Linear solver");
-    type = prm.get("Type");
+    const std::string given = prm.get("Type");
     prm.leave_subsection();
-    method = linear::LinearSolverRegistry::instance().create(type, prm);
-    if (type == "direct")
-      type = "MUMPS";
+    const auto &registry = linear::LinearSolverRegistry::instance();
+    type                 = registry.canonical(given, "Linear solver/Type");
+    method               = registry.create(type, prm);
   }
 
 

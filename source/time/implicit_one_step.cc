@@ -484,6 +484,15 @@ namespace tissuefem::time
     state.u.swap(next.u);
     state.v.swap(next.v);
     state.a.swap(next.a);
+    if (damped)
+      {
+        state.damping.alpha = context->time.rayleigh_mass;
+        state.damping.beta  = context->time.rayleigh_stiffness;
+        state.damping.step  = h;
+        state.damping.u_old = next.u; // u_n, swapped out above
+      }
+    else
+      state.damping = solid::RayleighDamping();
     report.dt = h;
     step_size = next_step_size(h, reduced);
     return report;

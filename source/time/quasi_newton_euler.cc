@@ -155,7 +155,7 @@ namespace tissuefem::time
       const double t_new = state.time + h;
       const double c     = begin_attempt(state, h, next);
       bool fresh = std::abs(c - kept) > 1e-12 * c || age + 1 >= refresh_interval
-                   || previous_iterations > refresh_iterations;
+                   || recorded_iterations() > refresh_iterations;
       std::string failure;
       for (;; fresh = true)
         {
@@ -229,7 +229,6 @@ namespace tissuefem::time
       report.newton_iterations += result.iterations;
       report.assembly_seconds += result.assembly_seconds;
       report.solve_seconds += result.solve_seconds;
-      previous_iterations = result.iterations;
       record_iterations(result.iterations);
       if (!result.residual_norms.empty())
         report.residual_norm = result.residual_norms.back();
@@ -238,11 +237,10 @@ namespace tissuefem::time
 
     unsigned int memory = 5, max_iterations = 100, refresh_iterations = 5,
                  refresh_interval = 100;
-    /// The mass coefficient of the kept factorization (-1: none), its age
-    /// in steps, and the previous step's L-BFGS iterations.
-    double       kept                = -1;
-    unsigned int age                 = 0;
-    unsigned int previous_iterations = 0;
+    /// The mass coefficient of the kept factorization (-1: none) and its
+    /// age in steps.
+    double       kept = -1;
+    unsigned int age  = 0;
     /// For the summary: factorizations made and steps taken.
     unsigned int refreshes = 0, steps = 0;
   };

@@ -197,7 +197,8 @@ namespace tissuefem::tool
   Record<dim>
   GraspTool<dim>::record(const time::State &state, solid::Solid<dim> &solid)
   {
-    const auto  values = solid.held_force(state.u, state.a, state.time);
+    const auto values
+      = solid.held_force(state.u, state.a, state.time, state.damping);
     Record<dim> result;
     for (unsigned int d = 0; d < dim; ++d)
       result.force[d] = values[d];

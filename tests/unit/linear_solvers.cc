@@ -6,10 +6,13 @@
 // 1e-6, from 'Relative tolerance' 1e-10), again for a second right-hand
 // side without refactorizing, again after the matrix values change, and
 // on a new matrix object of another pattern (the kept state is dropped);
-// a loose forcing term must still meet its residual bound. Checks are
-// gathered over the registered methods, so this output does not change
-// when one is added; a method that refuses the number of processes must
-// say so naming the parameter.
+// a loose forcing term must still meet its residual bound. Direct methods
+// must also solve symmetric indefinite and unsymmetric systems met in turn
+// on one matrix object (MUMPS, with its symmetric factorization allowed,
+// factorizes the symmetric ones as L D L^T). Checks
+// are gathered over the registered methods, so this output does not change when
+// one is added; a method that refuses the number of processes must say so
+// naming the parameter.
 
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/mpi.h>
@@ -43,13 +46,15 @@ namespace
   /// The m x m five-point Laplacian (4 on the diagonal, -1 to each grid
   /// neighbour; Dirichlet rows implied outside) times @p scale plus
   /// @p shift on the diagonal; m = 1 row of a grid is a 1D chain when
-  /// @p chain.
+  /// @p chain. @p skew != 0 adds a centred convection term along x
+  /// (-skew to the left neighbour, +skew to the right): not symmetric.
   void
   laplacian(MatrixType        &A,
             const unsigned int m,
             const bool         chain,
             const double       scale,
-            const double       shift)
+            const double       shift,
+            const double       skew = 0)
   {
     const unsigned int n     = chain ? m : m * m;
     const IndexSet     owned = owned_rows(n);
@@ -72,9 +77,9 @@ namespace
         const unsigned int x = chain ? i : i % m, y = chain ? 0 : i / m;
         A.set(i, i, (chain ? 2. : 4.) * scale + shift);
         if (x > 0)
-          A.set(i, i - 1, -scale);
+          A.set(i, i - 1, -scale - skew);
         if (x + 1 < m)
-          A.set(i, i + 1, -scale);
+          A.set(i, i + 1, -scale + skew);
         if (!chain && y > 0)
           A.set(i, i - m, -scale);
         if (!chain && y + 1 < m)
@@ -129,6 +134,70 @@ namespace
                            "solver " + name + what,
                            "relative error " + std::to_string(error));
   }
+
+  /**
+   * Direct solvers on matrices Newton also meets: symmetric indefinite
+   * (a stiffness past a limit point, the nodal dilatation's saddle point)
+   * and not symmetric (friction), on the same matrix object in turn, so
+   * that a method that factorizes symmetric matrices otherwise must notice
+   * the change both ways (MUMPS analyses again each time; the LUs never).
+   * Iterative methods (CG) are not asked.
+   */
+  void
+  check_structure(const std::string &name, MatrixType &A)
+  {
+    // The method with its symmetric factorizations allowed (an entry of
+    // MUMPS's that the others ignore).
+    ParameterHandler prm;
+    solvers::LinearSolver::declare_parameters(prm);
+    prm.enter_subsection("Linear solver");
+    prm.set("Type", name);
+    prm.set("MUMPS symmetric factorization", true);
+    prm.leave_subsection();
+    solvers::LinearSolver solver(prm);
+    const std::string     what = " solves symmetric indefinite and unsymmetric "
+                                 "systems in turn (direct methods)";
+    if (!solver.direct())
+      {
+        tissuefem_tests::check(true, "solver " + name + what);
+        tissuefem_tests::check(true,
+                               "solver " + name
+                                 + " analyses again only where symmetry "
+                                   "decides the factorization");
+        return;
+      }
+    // Analyses after the first solve's (which every method makes).
+    unsigned int setups = 0;
+    double       worst  = 0;
+    unsigned int seed   = 10;
+    for (const double skew : {0., 0.7, 0.})
+      {
+        // Eigenvalues of the Laplacian lie in (0, 8); a shift of -2.9
+        // leaves some on either side of zero, none nearer than 0.014. The
+        // unsymmetric one is kept diagonally dominant (shift 1), as
+        // skewed and indefinite it is badly conditioned.
+        laplacian(A, 24, false, 1., skew == 0 ? -2.9 : 1., skew);
+        const VectorType exact = random_vector(A, ++seed);
+        VectorType       b(exact), x(exact);
+        A.vmult(b, exact);
+        x = 0;
+        solver.solve(A, x, b, true);
+        tissuefem_tests::raise(worst, relative_error(x, exact));
+        if (seed == 11)
+          setups = solver.statistics().setups;
+      }
+    tissuefem_tests::check(worst <= 1e-10,
+                           "solver " + name + what,
+                           "relative error " + std::to_string(worst));
+    const unsigned int analyses = solver.statistics().setups - setups;
+    tissuefem_tests::check(analyses == (name == "MUMPS" ? 2u : 0u),
+                           "solver " + name
+                             + " analyses again only where symmetry "
+                               "decides the factorization",
+                           std::to_string(analyses) + " analyses");
+    laplacian(A, 24, false, 3., 1.);
+  }
+
 
   void
   check_method(const std::string &name)
@@ -188,6 +257,7 @@ namespace
         check_solve(name, *solver, A, 7, false, what);
     }
     check_solve(name, *solver, A, 3, true, " follows new matrix values");
+    check_structure(name, A);
     MatrixType chain;
     laplacian(chain, 300, true, 1., 1e-2);
     check_solve(

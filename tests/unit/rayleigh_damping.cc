@@ -25,6 +25,14 @@
 //    identity on the linear bar: the damping force takes out exactly
 //    (alpha m + beta k) (u1 - u0)^2 / h per step (relative 1e-9), and the
 //    energy lost per step is that plus m/2 (v1 - v0)^2 + k/2 (u1 - u0)^2.
+// 4. The reaction at the clamp (Solid::reaction_forces with the state's
+//    damping), step by step against the clamped node's row of the damped
+//    equation: m01 (a1 + alpha v1) - f(u1) - beta/h (f(u1) - f(u0)), the
+//    consistent mass coupling m01 = 1/6, a1 = (v1 - v0)/h, v1 = (u1 -
+//    u0)/h (relative 1e-9 of the largest elastic force |f(u1)| met): the
+//    force a clamp or a grasping tool must supply includes the damping
+//    force. Backward Euler on both bars; the linearly implicit Euler on the
+//    linear bar (its damping term linearizes f at u0, the same there).
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
@@ -122,13 +130,14 @@ namespace
   }
 
   /// Runs @p integrator with steps @p h to @p end_time on the bar of
-  /// @p prm; calls @p each_step(u0, v0, u1, v1, damping work) per step.
+  /// @p prm; calls @p each_step(u0, v0, u1, v1, damping work, reaction at
+  /// x = 0) per step.
   void
   run(ParameterHandler  &prm,
       const std::string &integrator,
       const double       h,
       const double       end_time,
-      const std::function<void(double, double, double, double, double)>
+      const std::function<void(double, double, double, double, double, double)>
         &each_step)
   {
     set_integrator(prm, integrator, h, end_time);
@@ -138,12 +147,15 @@ namespace
     while (state.time < end_time * (1 - 1e-12))
       {
         const double u0 = free_entry(state.u), v0 = free_entry(state.v);
-        const auto   report = run->integrator->advance(state, end_time);
+        const auto   report   = run->integrator->advance(state, end_time);
+        const double reaction = scene.solid->reaction_forces(
+          state.u, state.a, state.time, state.damping, {0})[0];
         each_step(u0,
                   v0,
                   free_entry(state.u),
                   free_entry(state.v),
-                  report.damping_work);
+                  report.damping_work,
+                  reaction);
       }
   }
 
@@ -172,7 +184,9 @@ namespace
             integrator,
             h,
             1.,
-            [&](double, double, double u1, double, double) { last = u1; });
+            [&](double, double, double u1, double, double, double) {
+              last = u1;
+            });
         errors.push_back(std::abs(last - damped_oscillator(1.)));
       }
     const double order_1 = std::log2(errors[0] / errors[1]);
@@ -197,16 +211,28 @@ namespace
     const std::function<
       std::pair<double, double>(const Bar &, double, double, double)> &step)
   {
-    double worst = 0, worst_work = 0, worst_balance = 0;
+    double worst = 0, worst_work = 0, worst_balance = 0, worst_reaction = 0,
+           largest_force = 0;
+    const double h       = 0.01;
     run(prm,
         integrator,
-        0.01,
+        h,
         0.5,
-        [&](double u0, double v0, double u1, double v1, double work) {
-          const auto [u_expected, v_expected] = step(bar, u0, v0, 0.01);
+        [&](double u0,
+            double v0,
+            double u1,
+            double v1,
+            double work,
+            double reaction) {
+          const auto [u_expected, v_expected] = step(bar, u0, v0, h);
           tissuefem_tests::raise(worst,
                                  std::abs(u1 - u_expected) / 0.01
                                    + std::abs(v1 - v_expected) / 0.1);
+          const double velocity = (u1 - u0) / h, a1 = (velocity - v0) / h;
+          const double expected = (a1 + alpha * velocity) / 6 - bar.force(u1)
+                                  - beta / h * (bar.force(u1) - bar.force(u0));
+          tissuefem_tests::raise(worst_reaction, std::abs(reaction - expected));
+          largest_force = std::max(largest_force, std::abs(bar.force(u1)));
           if (&bar != &linear)
             return;
           const double du         = u1 - u0;
@@ -225,6 +251,13 @@ namespace
                                  integrator + ", " + bar_name
                                    + ": 50 steps against the recurrence "
                                      "written out, relative error");
+    if (integrator == "backward Euler" || &bar == &linear)
+      tissuefem_tests::check_small(
+        worst_reaction / largest_force,
+        1e-9,
+        integrator + ", " + bar_name
+          + ": reaction at the clamp, damping force included, against its "
+            "row of the damped equation, relative");
     if (&bar == &linear)
       {
         tissuefem_tests::check_small(

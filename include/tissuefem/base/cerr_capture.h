@@ -8,7 +8,7 @@ namespace tissuefem
 {
   /**
    * Keeps what libraries write to std::cerr while it lives (deal.II's
-   * muparser wrapper, Amesos_Mumps: multi-line reports of errors that
+   * muparser wrapper, Amesos: multi-line reports of errors that
    * tissuefem reports itself, on one line naming the parameter or the
    * solver's code). std::cerr is restored on destruction, also when an
    * exception leaves the scope.

@@ -69,14 +69,27 @@ namespace tissuefem
       aliases[old_name] = name;
     }
 
+    /**
+     * Accepts @p synonym for @p name silently and for good (e.g. a
+     * generic default such as 'direct' standing for one implementation);
+     * canonical() returns @p name.
+     */
+    void
+    add_synonym(const std::string &synonym, const std::string &name)
+    {
+      synonyms[synonym] = name;
+    }
+
     /// Names separated by '|', for a Patterns::Selection: the registered
-    /// ones and the earlier spellings still accepted.
+    /// ones, their synonyms and the earlier spellings still accepted.
     std::string
     selection_pattern() const
     {
       std::string result;
       for (const auto &[name, entry] : entries)
         result += (result.empty() ? "" : "|") + name;
+      for (const auto &[synonym, name] : synonyms)
+        result += "|" + synonym;
       for (const auto &[old_name, name] : aliases)
         result += "|" + old_name;
       return result;
@@ -90,6 +103,8 @@ namespace tissuefem
     std::string
     canonical(const std::string &name, const std::string &parameter) const
     {
+      if (const auto synonym = synonyms.find(name); synonym != synonyms.end())
+        return synonym->second;
       const auto alias = aliases.find(name);
       if (alias == aliases.end())
         return name;
@@ -109,6 +124,8 @@ namespace tissuefem
       std::string result;
       for (const auto &[name, entry] : entries)
         result += "'" + name + "': " + entry.description + " ";
+      for (const auto &[synonym, name] : synonyms)
+        result += "'" + synonym + "': the same as '" + name + "'. ";
       for (const auto &[old_name, name] : aliases)
         result
           += "('" + old_name + "': the earlier spelling of '" + name + "'.) ";
@@ -129,6 +146,9 @@ namespace tissuefem
     {
       auto it = entries.find(name);
       if (it == entries.end())
+        if (const auto synonym = synonyms.find(name); synonym != synonyms.end())
+          it = entries.find(synonym->second);
+      if (it == entries.end())
         if (const auto alias = aliases.find(name); alias != aliases.end())
           it = entries.find(alias->second);
       if (it == entries.end())
@@ -147,6 +167,8 @@ namespace tissuefem
     std::map<std::string, Entry> entries;
     /// Earlier spelling -> registered name.
     std::map<std::string, std::string> aliases;
+    /// Synonym -> registered name.
+    std::map<std::string, std::string> synonyms;
     /// Earlier spellings already named in a notice (one notice each).
     mutable std::set<std::string> noticed;
   };

@@ -17,6 +17,29 @@ namespace tissuefem::solid
   using namespace dealii;
 
   /**
+   * The Rayleigh damping force of a state that an integrator reached by a
+   * step of size @p step from @p u_old with mass and stiffness factors
+   * @p alpha and @p beta (doc/user_guide.md, Rayleigh damping;
+   * ImplicitOneStep::damp()): f_d = alpha M v + beta/h (r(u) - r(u_old)),
+   * v = (u - u_old)/h, r(u) = f_int(u) - f_ext(t) with the force
+   * contributions, both at the state's time: the term the step's equation
+   * holds, so that the forces on held and clamped parts balance it.
+   * Inactive (alpha = beta = 0) for undamped integrators.
+   */
+  struct RayleighDamping
+  {
+    double     alpha = 0, beta = 0, step = 0;
+    VectorType u_old;
+
+    bool
+    active() const
+    {
+      return alpha != 0 || beta != 0;
+    }
+  };
+
+
+  /**
    * What a discretized hyperelastic solid offers a time integrator, for
    * the semi-discrete equations of motion
    *
@@ -224,12 +247,16 @@ namespace tissuefem::solid
 
     /**
      * The force the body exerts on whatever holds its held vertices (a
-     * grasping tool; see Solid::hold()), for a state (u, a) at @p time:
-     * minus the sum over the held degrees of freedom of M a + f_int(u) -
-     * f_ext(t); dim components (force units), zero when nothing is held.
+     * grasping tool; see Solid::hold()), for a state (u, a) at @p time
+     * reached with @p damping: minus the sum over the held degrees of
+     * freedom of M a + f_int(u) - f_ext(t) + f_d (RayleighDamping); dim
+     * components (force units), zero when nothing is held.
      */
     virtual std::vector<double>
-    held_force(const VectorType &u, const VectorType &acceleration, double time)
+    held_force(const VectorType      &u,
+               const VectorType      &acceleration,
+               double                 time,
+               const RayleighDamping &damping)
       = 0;
     /**
      * Groups of degrees of freedom whose Jacobian columns share no row
@@ -364,14 +391,16 @@ namespace tissuefem::solid
 
     /**
      * The force each boundary in @p boundary_ids applies to the body, for
-     * a state (u, a) at @p time: the sum over that boundary's degrees of
-     * freedom of M a + f_int(u) - f_ext(t), without constraints; dim
-     * components per boundary, one after the other (force units).
+     * a state (u, a) at @p time reached with @p damping: the sum over that
+     * boundary's degrees of freedom of M a + f_int(u) - f_ext(t) + f_d
+     * (RayleighDamping), without constraints; dim components per boundary,
+     * one after the other (force units).
      */
     virtual std::vector<double>
     reaction_forces(const VectorType                      &u,
                     const VectorType                      &acceleration,
                     const double                           time,
+                    const RayleighDamping                 &damping,
                     const std::vector<types::boundary_id> &boundary_ids)
       = 0;
   };

@@ -177,9 +177,10 @@ namespace tissuefem::solid
     column_groups() override;
 
     std::vector<double>
-    held_force(const VectorType &u,
-               const VectorType &acceleration,
-               double            time) override;
+    held_force(const VectorType      &u,
+               const VectorType      &acceleration,
+               double                 time,
+               const RayleighDamping &damping) override;
 
     /**
      * Holds the listed triangulation vertices from now on: all their
@@ -220,6 +221,7 @@ namespace tissuefem::solid
       const VectorType                      &u,
       const VectorType                      &acceleration,
       const double                           time,
+      const RayleighDamping                 &damping,
       const std::vector<types::boundary_id> &boundary_ids) override;
 
     const Discretization<dim> &
@@ -570,12 +572,13 @@ namespace tissuefem::solid
     };
     std::vector<std::vector<DirichletPoint>> dirichlet_points;
 
-    /// M a + f_int(u) - f_ext(t) on every row, without constraints.
+    /// M a + f_int(u) - f_ext(t) + f_d on every row, without constraints.
     void
-         unconstrained_residual(const VectorType &u,
-                                const VectorType &acceleration,
-                                const double      time,
-                                VectorType       &residual);
+         unconstrained_residual(const VectorType      &u,
+                                const VectorType      &acceleration,
+                                const double           time,
+                                const RayleighDamping &damping,
+                                VectorType            &residual);
     bool body_force_present;
     /// Ghosted copies of the arguments, reused between calls.
     VectorType ghosted_u, ghosted_w;

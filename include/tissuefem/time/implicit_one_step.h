@@ -264,6 +264,13 @@ namespace tissuefem::time
       last_iterations = iterations;
     }
 
+    /// The iterations last recorded (those of the previous solve).
+    unsigned int
+    recorded_iterations() const
+    {
+      return last_iterations;
+    }
+
     /// u_tilde of the step being attempted (see predict()).
     VectorType u_tilde;
 

@@ -47,6 +47,10 @@ namespace tissuefem::time
   {
     double     time = 0;
     VectorType u, v, a;
+    /// The damping force's terms of the step that reached this state
+    /// (inactive for undamped integrators), for the forces on held and
+    /// clamped parts.
+    solid::RayleighDamping damping;
   };
 
   /// What one step did, for statistics.csv and the screen.
