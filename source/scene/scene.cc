@@ -22,20 +22,14 @@ namespace tissuefem
     {
       explicit ChosenIntegrator(ParameterHandler &prm)
       {
-        time::TimeParameters time_parameters;
-        time_parameters.parse_parameters(prm);
-        name               = time_parameters.integrator;
-        rayleigh_mass      = time_parameters.rayleigh_mass;
-        rayleigh_stiffness = time_parameters.rayleigh_stiffness;
-        can                = time::IntegratorRegistry::instance()
-                .create(name, prm)
+        parameters.parse_parameters(prm);
+        can = time::IntegratorRegistry::instance()
+                .create(parameters.integrator, prm)
                 ->capabilities();
       }
 
-      std::string  name;
-      double       rayleigh_mass      = 0;
-      double       rayleigh_stiffness = 0;
-      Capabilities can;
+      time::TimeParameters parameters;
+      Capabilities         can;
     };
 
     /// The registered integrators that, with their default settings, have
@@ -100,12 +94,12 @@ namespace tissuefem
         throw InputError("Parameter '" + parameter + "': " + what
                          + " Time integration/Integrator = "
                          + integrators_with(needed) + " (not '"
-                         + integrator.name + "'"
+                         + integrator.parameters.integrator + "'"
                          + (why.empty() ? "" : ": " + why) + ")");
       };
       for (const auto &[name, value] :
-           {std::pair("mass", integrator.rayleigh_mass),
-            std::pair("stiffness", integrator.rayleigh_stiffness)})
+           {std::pair("mass", integrator.parameters.rayleigh_mass),
+            std::pair("stiffness", integrator.parameters.rayleigh_stiffness)})
         if (value != 0 && !can.rayleigh_damping)
           refuse(std::string("Time integration/Rayleigh ") + name + " damping",
                  "must be 0 unless",
@@ -154,9 +148,10 @@ namespace tissuefem
         = shear == 0   ? "no invertible neo-Hookean material"
           : !simplices ? "the invertible model on quadrilaterals or hexahedra, "
                          "which recover by elasticity alone"
-          : !takes     ? "integrator '" + integrator.name + "' does not take it"
-                       : "twice the shear modulus of the invertible "
-                         "neo-Hookean model on triangles or tetrahedra";
+          : !takes     ? "integrator '" + integrator.parameters.integrator
+                       + "' does not take it"
+                   : "twice the shear modulus of the invertible "
+                     "neo-Hookean model on triangles or tetrahedra";
       boundary.resolve_self_contact(shear,
                                     shear > 0 && simplices && takes,
                                     why);

@@ -213,14 +213,16 @@ namespace tissuefem::solid
   {
     // With w = a + alpha v: R = M w + r(u), and with R_old = M w + r(u_old)
     // the damped residual M a + r(u) + f_d is R + beta/h (R - R_old).
-    VectorType w(acceleration);
     if (damping.alpha != 0)
       {
+        VectorType w(acceleration);
         w.add(damping.alpha / damping.step, u);
         w.add(-damping.alpha / damping.step, damping.u_old);
+        make_ghosted(w, ghosted_w);
       }
+    else
+      make_ghosted(acceleration, ghosted_w);
     make_ghosted(u, ghosted_u);
-    make_ghosted(w, ghosted_w);
     Request request;
     request.u       = &ghosted_u;
     request.inertia = &ghosted_w;

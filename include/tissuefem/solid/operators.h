@@ -30,12 +30,6 @@ namespace tissuefem::solid
   {
     double     alpha = 0, beta = 0, step = 0;
     VectorType u_old;
-
-    bool
-    active() const
-    {
-      return alpha != 0 || beta != 0;
-    }
   };
 
 

@@ -102,8 +102,9 @@ namespace tissuefem::solvers::linear
      * backward Euler's, the quasistatic, the linearly implicit Euler's and the
      * nodal dilatation's saddle-point systems are, without friction) it
      * is factorized as L D L^T with 1x1 and 2x2 pivots (MUMPS SYM = 2:
-     * symmetric indefinite), which takes half the arithmetic and memory
-     * of L U; otherwise as L U. The matrix is given distributed as it is
+     * symmetric indefinite), on the benchmark scenes 5-28 % less solve
+     * time and 4-10 % less memory than L U (doc/studies.md, MUMPS L D
+     * L^T); otherwise as L U. The matrix is given distributed as it is
      * (ICNTL(18) = 3), the right-hand side and solution gathered on
      * process 0. The symbolic analysis is kept across Newton iterations
      * and steps, and made again only when the matrix stops or starts
@@ -136,8 +137,8 @@ namespace tissuefem::solvers::linear
           "For Type = MUMPS (or direct). true: a symmetric matrix (checked "
           "before each factorization: |A v - A^T v| <= 1e-10 |A v| for a "
           "pseudo-random v) is factorized as L D L^T with 1x1 and 2x2 "
-          "pivots, any other as L U; measured 10-25 % less solve time and "
-          "memory on 7,500-18,000 unknowns "
+          "pivots, any other as L U; measured 5-28 % less solve time and "
+          "4-10 % less memory on 7,500-12,000 unknowns "
           "(benchmarks/symmetric_factorization.sh). false: always L U. Not "
           "the default: on crushed tetrahedra with self contact the "
           "recovery depends on round-off in Newton's path, and with L D "
@@ -210,7 +211,7 @@ namespace tissuefem::solvers::linear
           }
         for_each_stored_entry(
           M, [&](const std::size_t k, int, int, const double value) {
-            if (given[k])
+            if (position[k] != not_given)
               values[position[k]] = value;
           });
         // MUMPS estimates its working memory in the analysis; pivoting can
@@ -258,15 +259,13 @@ namespace tissuefem::solvers::linear
         n_local_nonzeros = M.NumMyNonzeros();
         rows.clear();
         columns.clear();
-        given.assign(n_local_nonzeros, false);
-        position.assign(n_local_nonzeros, 0);
+        position.assign(n_local_nonzeros, not_given);
         for_each_stored_entry(
           M, [&](const std::size_t k, const int row, const int column, double) {
             const long long i = M.RowMap().GID64(row);
             const long long j = M.ColMap().GID64(column);
             if (symmetric && j < i)
               return;
-            given[k]    = true;
             position[k] = rows.size();
             rows.push_back(static_cast<MUMPS_INT>(i + 1));
             columns.push_back(static_cast<MUMPS_INT>(j + 1));
@@ -317,11 +316,11 @@ namespace tissuefem::solvers::linear
       bool           symmetric        = false;
       int            n_local_nonzeros = 0;
       /// The entries given to MUMPS (1-based global indices) and their
-      /// values; for each stored entry of the local rows whether it is
-      /// given and where.
+      /// values; for each stored entry of the local rows its index among
+      /// them (not_given: below the diagonal of a symmetric matrix).
+      static constexpr std::size_t   not_given = std::size_t(-1);
       std::vector<MUMPS_INT>         rows, columns;
       std::vector<double>            values;
-      std::vector<bool>              given;
       std::vector<std::size_t>       position;
       std::unique_ptr<Epetra_Map>    root_map;
       std::unique_ptr<Epetra_Import> to_root, from_root;
@@ -333,9 +332,9 @@ namespace tissuefem::solvers::linear
     Mumps,
     "MUMPS",
     "parallel sparse direct solver (MUMPS), the robust choice for meshes up "
-    "to some 10^5 unknowns: L D L^T where the matrix is symmetric, L U "
-    "otherwise ('MUMPS symmetric factorization'); the symbolic analysis is "
-    "kept across iterations and steps.")
+    "to some 10^5 unknowns: L U, or L D L^T where the matrix is symmetric "
+    "with 'MUMPS symmetric factorization'; the symbolic analysis is kept "
+    "across iterations and steps.")
 
   namespace
   {
