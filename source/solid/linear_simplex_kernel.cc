@@ -47,8 +47,7 @@ namespace tissuefem::solid
   {
     if (dim < 2 || !discretization.simplex || discretization.fe->degree != 1
         || materials.edge_length_formulation()
-        || materials.mean_dilatation_formulation()
-        || materials.nodal_dilatation_formulation() || cache.n_scalar != n_nodes
+        || materials.mean_dilatation_formulation() || cache.n_scalar != n_nodes
         || cache.n_compon != dim)
       return false;
     // The closed-form mass equals the general path's only where its

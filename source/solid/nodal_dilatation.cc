@@ -22,7 +22,6 @@ namespace tissuefem::solid
     n_active_cells          = mesh.n_active_cells();
     n_vertices              = mesh.n_vertices();
 
-    std::map<unsigned int, std::vector<unsigned int>> around;
     std::vector<bool> needed(mesh.n_vertices(), false);
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -74,7 +73,10 @@ namespace tissuefem::solid
             around[c.vertex[v]].push_back(cells.size());
         cells.push_back(std::move(c));
       }
-    build_patches(around);
+    volume_around.assign(n_vertices, 0.);
+    for (const auto &[vertex, list] : around)
+      for (const unsigned int g : list)
+        volume_around[vertex] += cells[g].volume;
 
     double sum = 0;
     for (unsigned int q = 0; q < discretization.cell_quadrature.size(); ++q)
@@ -85,14 +87,24 @@ namespace tissuefem::solid
 
 
   template <int dim>
-  void
-  NodalDilatation<dim>::build_patches(
-    const std::map<unsigned int, std::vector<unsigned int>> &around)
+  const std::vector<typename NodalDilatation<dim>::Patch> &
+  NodalDilatation<dim>::patch_list() const
   {
-    volume_around.assign(n_vertices, 0.);
-    for (const auto &[vertex, list] : around)
-      for (const unsigned int g : list)
-        volume_around[vertex] += cells[g].volume;
+    // Built on first use: only the wide matrix needs them (the sparser
+    // system of nodal_dilatation_system.h and the residual do not), and
+    // on a large mesh they cost more than the rest of the set-up.
+    std::lock_guard<std::mutex> lock(patch_mutex);
+    if (!patches_built)
+      build_patches();
+    patches_built = true;
+    return patches;
+  }
+
+
+  template <int dim>
+  void
+  NodalDilatation<dim>::build_patches() const
+  {
     for (unsigned int e = 0; e < cells.size(); ++e)
       if (cells[e].owned)
         {
@@ -138,7 +150,7 @@ namespace tissuefem::solid
     const AffineConstraints<double>   &constraints,
     TrilinosWrappers::SparsityPattern &sparsity) const
   {
-    for (const Patch &patch : patches)
+    for (const Patch &patch : patch_list())
       constraints.add_entries_local_to_global(patch.dofs, sparsity, false);
   }
 
@@ -194,9 +206,9 @@ namespace tissuefem::solid
     const std::vector<double> sums = volume_times_J(J);
     std::vector<double>       result(n_active_cells,
                                std::numeric_limits<double>::quiet_NaN());
-    for (const Patch &patch : patches)
-      result[cells[patch.cell].active_index]
-        = vertex_average(cells[patch.cell], sums);
+    for (const Cell &cell : cells)
+      if (cell.owned)
+        result[cell.active_index] = vertex_average(cell, sums);
     return result;
   }
 
@@ -307,8 +319,9 @@ namespace tissuefem::solid
       else
         rows.distribute_local_to_global(copy.r, copy.patch->dofs, residual);
     };
+    const std::vector<Patch> &list = patch_list();
     WorkStream::run(
-      patches.cbegin(), patches.cend(), worker, copier, Scratch(), Copy());
+      list.cbegin(), list.cend(), worker, copier, Scratch(), Copy());
     return inverted;
   }
 

@@ -285,8 +285,12 @@ namespace tissuefem::solid
       Vector<double>                       r;
       std::vector<types::global_dof_index> indices;
     };
-    double *rhs_values = rhs.trilinos_vector()[0];
-    auto    worker = [&](const std::vector<unsigned int>::const_iterator &it,
+    // The residual's displacement rows: this process's first ones here.
+    double        *residual_values = residual.trilinos_vector()[0];
+    Vector<double> r_u;
+    std::vector<types::global_dof_index> u_indices;
+    double                              *rhs_values = rhs.trilinos_vector()[0];
+    auto worker = [&](const std::vector<unsigned int>::const_iterator &it,
                       int &,
                       Copy &copy) {
       copy.o               = it - owned_cells.cbegin();
@@ -305,16 +309,21 @@ namespace tissuefem::solid
       const int         *row = &direct.row[std::size_t(copy.o) * n_a];
       if (!jacobian)
         {
-          // The displacement rows only.
+          // The displacement rows only: in place where they are owned and
+          // free (the line search's trials come here).
           const unsigned int n_e = nodal.cells[owned_cells[copy.o]].dofs.size();
-          Vector<double>     r(n_e);
-          for (unsigned int i = 0; i < n_e; ++i)
-            r(i) = copy.r(i);
-          rows.distribute_local_to_global(
-            r,
-            std::vector<types::global_dof_index>(copy.indices.begin(),
-                                                 copy.indices.begin() + n_e),
-            residual);
+          if (row[0] >= 0)
+            for (unsigned int i = 0; i < n_e; ++i)
+              residual_values[row[i]] += copy.r(i);
+          else
+            {
+              r_u.reinit(n_e, true);
+              for (unsigned int i = 0; i < n_e; ++i)
+                r_u(i) = copy.r(i);
+              u_indices.assign(copy.indices.begin(),
+                               copy.indices.begin() + n_e);
+              rows.distribute_local_to_global(r_u, u_indices, residual);
+            }
         }
       else if (row[0] >= 0)
         for (unsigned int i = 0; i < n_a; ++i)

@@ -602,6 +602,8 @@ namespace tissuefem::solid
   void
   Solid<dim>::assemble(const Request &request, VectorType &residual)
   {
+    if (nodal && request.jacobian)
+      prepare_nodal_jacobian();
     if (uses_lean_kernel(request))
       {
         assemble_lean(request, residual);
@@ -615,12 +617,8 @@ namespace tissuefem::solid
       = request.external && !boundary_conditions.neumann.empty();
     boundary_conditions.set_time(request.time);
     discretization.initialize_assembly_vector(residual);
-    if (request.jacobian && patches && !nodal_system && !wide_layout)
-      build_jacobian_matrix(true);
     if (request.jacobian)
       jacobian_matrix = 0;
-    if (request.jacobian && nodal_system)
-      nodal_system->clear();
 
     // One cell: its elastic part (stresses at the points, or the
     // edge-length element), loads and inertia at the points, tractions on
@@ -674,25 +672,7 @@ namespace tissuefem::solid
                     copier,
                     Scratch<dim>(discretization, neumann),
                     Copy(cache.n_dofs));
-    if (request.internal && patches && nodal_system)
-      for (const auto &cell : nodal_system->assemble(*request.u,
-                                                     materials,
-                                                     fibre_field,
-                                                     *request.rows,
-                                                     request.inhomogeneous,
-                                                     request.jacobian,
-                                                     residual))
-        inverted.push_back(cell);
-    else if (request.internal && patches)
-      for (const auto &cell : nodal->assemble(*request.u,
-                                              materials,
-                                              fibre_field,
-                                              request.jacobian,
-                                              *request.rows,
-                                              request.inhomogeneous,
-                                              jacobian_matrix,
-                                              residual))
-        inverted.push_back(cell);
+    add_nodal_elastic(request, residual, inverted);
     add_contributions(request, residual);
 
     residual.compress(VectorOperation::add);
@@ -703,6 +683,46 @@ namespace tissuefem::solid
     if (three_field.active() && request.internal)
       three_field.initialized();
     report_inversions(inverted);
+  }
+
+
+  template <int dim>
+  void
+  Solid<dim>::prepare_nodal_jacobian()
+  {
+    if (!nodal_system && !wide_layout)
+      build_jacobian_matrix(true);
+    if (nodal_system)
+      nodal_system->clear();
+  }
+
+
+  template <int dim>
+  void
+  Solid<dim>::add_nodal_elastic(
+    const Request                                             &request,
+    VectorType                                                &residual,
+    std::vector<std::tuple<unsigned int, double, Point<dim>>> &inverted)
+  {
+    if (!nodal || !request.internal)
+      return;
+    const auto undefined = nodal_system
+                             ? nodal_system->assemble(*request.u,
+                                                      materials,
+                                                      fibre_field,
+                                                      *request.rows,
+                                                      request.inhomogeneous,
+                                                      request.jacobian,
+                                                      residual)
+                             : nodal->assemble(*request.u,
+                                               materials,
+                                               fibre_field,
+                                               request.jacobian,
+                                               *request.rows,
+                                               request.inhomogeneous,
+                                               jacobian_matrix,
+                                               residual);
+    inverted.insert(inverted.end(), undefined.begin(), undefined.end());
   }
 
 
@@ -785,6 +805,10 @@ namespace tissuefem::solid
 #define TISSUEFEM_INSTANTIATE(dim)                                            \
   template void Solid<dim>::assemble(const Request &, VectorType &);          \
   template void Solid<dim>::add_contributions(const Request &, VectorType &); \
+  template void Solid<dim>::add_nodal_elastic(                                \
+    const Request &,                                                          \
+    VectorType &,                                                             \
+    std::vector<std::tuple<unsigned int, double, Point<dim>>> &);             \
   template void Solid<dim>::report_inversions(                                \
     const std::vector<std::tuple<unsigned int, double, Point<dim>>> &) const;
 

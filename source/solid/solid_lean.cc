@@ -1,7 +1,8 @@
 // Solid's assembly through the lean kernel of linear simplices
 // (linear_simplex_kernel.h): the kernel computes and adds the cells without
 // constraints; the others go through AffineConstraints here, as in the
-// general path of solid.cc.
+// general path of solid_assembly.cc. For the nodal dilatation the kernel
+// gives the inertia and gravity, and the patches the elastic part.
 #include <tissuefem/solid/solid.h>
 
 #include <algorithm>
@@ -31,14 +32,16 @@ namespace tissuefem::solid
       jacobian_matrix = 0;
 
     typename LinearSimplexKernel<dim>::Input input;
-    input.u = request.u && request.internal ? request.u->trilinos_vector()[0]
-                                            : nullptr;
+    // The nodal dilatation's elastic part is not the cells' own: the
+    // kernel gives its inertia and loads, add_nodal_elastic() the rest.
+    const bool elastic = request.internal && !nodal;
+    input.u = request.u && elastic ? request.u->trilinos_vector()[0] : nullptr;
     input.w = request.inertia ? request.inertia->trilinos_vector()[0] : nullptr;
     input.mass_jacobian_coefficient = request.mass_jacobian_coefficient;
     boundary_conditions.set_time(request.time);
     input.gravity
       = boundary_conditions.load_factor * boundary_conditions.gravity;
-    input.internal            = request.internal;
+    input.internal            = elastic;
     input.external            = request.external;
     input.jacobian            = request.jacobian;
     input.cells               = request.cells;
@@ -132,11 +135,14 @@ namespace tissuefem::solid
         else
           rows.distribute_local_to_global(rhs, dofs, residual);
       }
+    add_nodal_elastic(request, residual, report);
     add_contributions(request, residual);
 
     residual.compress(VectorOperation::add);
     if (request.jacobian)
       jacobian_matrix.compress(VectorOperation::add);
+    if (request.jacobian && nodal_system)
+      nodal_system->finish(jacobian_matrix, residual);
     report_inversions(report);
   }
 

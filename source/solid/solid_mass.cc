@@ -9,6 +9,7 @@
 #include <tissuefem/solid/solid.h>
 
 #include <limits>
+#include <numeric>
 
 #include <chrono>
 
@@ -154,7 +155,7 @@ namespace tissuefem::solid
     const unsigned int n_q = cache.n_q, n_scalar = cache.n_scalar;
     const unsigned int n      = cache.n_dofs;
     const double      *values = ghosted.trilinos_vector()[0];
-    if (lean)
+    if (lean && !nodal)
       return Utilities::MPI::sum(lean->stored_energy(values),
                                  parallel_tools::communicator());
     double                      energy = 0;
@@ -165,7 +166,11 @@ namespace tissuefem::solid
       {
         const auto &cell     = cache.cells()[c];
         const auto &material = materials.material(cell->material_id());
-        for (unsigned int q = 0; q < n_q; ++q)
+        // The nodal dilatation's element is the linear simplex, where F is
+        // constant: one evaluation per cell unless the fibre varies at the
+        // points (the line search asks for this energy at every trial).
+        const unsigned int n_e = nodal && !material.uses_fibres() ? 1 : n_q;
+        for (unsigned int q = 0; q < n_e; ++q)
           {
             F[q] = unit_symmetric_tensor<dim>();
             for (unsigned int k = 0; k < n_scalar; ++k)
@@ -183,7 +188,7 @@ namespace tissuefem::solid
           }
         // No Fbar where J and Jbar differ in sign: inadmissible.
         if (nodal
-            && !apply_dilatation(F, n_q, theta[cell->active_cell_index()]))
+            && !apply_dilatation(F, n_e, theta[cell->active_cell_index()]))
           {
             energy = std::numeric_limits<double>::infinity();
             break;
@@ -204,7 +209,7 @@ namespace tissuefem::solid
         // is inadmissible, as assembly says by throwing.
         bool admissible = true;
         if (!material.admits_inversion())
-          for (unsigned int q = 0; q < n_q; ++q)
+          for (unsigned int q = 0; q < n_e; ++q)
             if (!(determinant(F[q]) > 0))
               admissible = false;
         if (!admissible)
@@ -212,10 +217,15 @@ namespace tissuefem::solid
             energy = std::numeric_limits<double>::infinity();
             break;
           }
-        for (unsigned int q = 0; q < n_q; ++q)
+        if (n_e == 1)
           energy += material.energy_density(
-                      F[q], fibre_field.at(cell->active_cell_index(), q))
-                    * cache.JxW(c)[q];
+                      F[0], fibre_field.at(cell->active_cell_index(), 0))
+                    * std::accumulate(cache.JxW(c), cache.JxW(c) + n_q, 0.);
+        else
+          for (unsigned int q = 0; q < n_q; ++q)
+            energy += material.energy_density(
+                        F[q], fibre_field.at(cell->active_cell_index(), q))
+                      * cache.JxW(c)[q];
       }
     return Utilities::MPI::sum(energy, parallel_tools::communicator());
   }

@@ -50,8 +50,10 @@ namespace tissuefem::solid
     static constexpr unsigned int n_dofs  = dim * (dim + 1);
 
     /// Whether the kernel computes what the general path would: linear
-    /// simplices in 2D or 3D, displacement formulation, a quadrature rule
-    /// exact for the P1 mass matrix.
+    /// simplices in 2D or 3D, the displacement formulation or the nodal
+    /// dilatation (whose elastic part Solid takes from its patches, asking
+    /// the kernel for inertia and gravity only: Input::internal false), a
+    /// quadrature rule exact for the P1 mass matrix.
     static bool
     applies(const Discretization<dim>         &discretization,
             const materials::MaterialSet<dim> &materials,

@@ -14,6 +14,7 @@
 
 #include <array>
 #include <map>
+#include <mutex>
 #include <tuple>
 #include <vector>
 
@@ -124,10 +125,13 @@ namespace tissuefem::solid
       std::vector<unsigned int>              own_positions;
     };
 
-    /// Fills patches from the cells around each vertex.
+    /// The patches of the owned cells, built on the first call.
+    const std::vector<Patch> &
+    patch_list() const;
+
+    /// Fills patches from the cells around each vertex (around).
     void
-    build_patches(
-      const std::map<unsigned int, std::vector<unsigned int>> &around);
+    build_patches() const;
 
     /// Psi-hat = Psi(Fbar) of a cell and its derivatives in (F, theta),
     /// times the cell's volume.
@@ -153,8 +157,12 @@ namespace tissuefem::solid
     double
     dilatation(const Patch &patch, const std::vector<double> &J) const;
 
-    std::vector<Cell>  cells;
-    std::vector<Patch> patches;
+    std::vector<Cell> cells;
+    /// The cells (indices into cells) around each vertex of an owned cell.
+    std::map<unsigned int, std::vector<unsigned int>> around;
+    mutable std::vector<Patch>                        patches;
+    mutable bool                                      patches_built = false;
+    mutable std::mutex                                patch_mutex;
     /// Reference quadrature weights, normalized to sum 1, for the fibre
     /// directions at the points (F is constant per cell).
     std::vector<double> weights;

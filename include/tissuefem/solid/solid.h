@@ -369,6 +369,21 @@ namespace tissuefem::solid
     bool
     uses_lean_kernel(const Request &request) const;
 
+    /// For the nodal dilatation, before a Jacobian's assembly: the wide
+    /// matrix built where it is the Jacobian's layout, or the sparser
+    /// system's blocks cleared.
+    void
+    prepare_nodal_jacobian();
+
+    /// For the nodal dilatation: adds the elastic part of @p request (the
+    /// patches' residual, and Jacobian into the sparser system or the wide
+    /// matrix) and appends its undefined cells to @p inverted.
+    void
+    add_nodal_elastic(
+      const Request                                             &request,
+      VectorType                                                &residual,
+      std::vector<std::tuple<unsigned int, double, Point<dim>>> &inverted);
+
     /// Throws InvertedElementError naming the @p inverted cells (active
     /// cell index, det F, centre), gathered from every process.
     void
