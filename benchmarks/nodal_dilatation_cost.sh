@@ -17,23 +17,14 @@
 #
 # Usage (from the repository top, after building):
 #   bash benchmarks/nodal_dilatation_cost.sh [path/to/tissuefem]
-set -euo pipefail
-exe=$(realpath "${1:-build/tissuefem}")
-top=$(realpath "$(dirname "$0")/..")
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work"
-
-value() { # key in run.txt
-  sed -n "s/^$1 = \([^ ]*\).*/\1/p" out/run.txt
-}
+source "$(dirname "$0")/common.sh"
 
 measure() { # prm, settings...: prints median p95 newton assembly solve (ms) run (s)
   "$exe" "$@" --set "Output/VTU/Interval=0" --set "Output/Directory=out" \
     > log.txt 2>&1 || { tail -3 log.txt >&2; exit 1; }
   local its
-  its=$(value "newton iterations")
-  echo "$(value "step median") $(value "step p95") $its $(value "wall assembly") $(value "wall solve") $(value "wall total")" |
+  its=$(value out "newton iterations")
+  echo "$(value out "step median") $(value out "step p95") $its $(value out "wall assembly") $(value out "wall solve") $(value out "wall total")" |
     awk -v n="$its" '{printf "%.2f %.2f %d %.2f %.2f %.2f\n", 1e3*$1, 1e3*$2, $3, 1e3*$4/n, 1e3*$5/n, $6}'
 }
 

@@ -17,17 +17,8 @@
 #
 # Usage (from the repository top, after building; about 5 minutes):
 #   bash benchmarks/quasi_newton.sh [path/to/tissuefem] [box|beam|muscle|all]
-set -euo pipefail
-exe=$(realpath "${1:-build/tissuefem}")
+source "$(dirname "$0")/common.sh"
 which=${2:-all}
-top=$(realpath "$(dirname "$0")/..")
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work"
-
-value() { # directory, key in its run.txt
-  sed -n "s/^$2 = \([^ ]*\).*/\1/p" "$1/run.txt"
-}
 
 run() { # directory, settings...
   local dir=$1

@@ -20,17 +20,8 @@
 #
 # Usage (from the repository top, after building):
 #   bash benchmarks/sofa_beams.sh [path/to/tissuefem] [small|large|both]
-set -euo pipefail
-exe=$(realpath "${1:-build/tissuefem}")
+source "$(dirname "$0")/common.sh"
 which=${2:-both}
-top=$(realpath "$(dirname "$0")/..")
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work"
-
-value() { # directory, key in its run.txt
-  sed -n "s/^$2 = \([^ ]*\).*/\1/p" "$1/run.txt"
-}
 
 run() { # directory, prm, settings...
   local dir=$1

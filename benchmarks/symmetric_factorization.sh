@@ -19,16 +19,7 @@
 #
 # Usage (from the repository top, after building):
 #   bash benchmarks/symmetric_factorization.sh [path/to/tissuefem]
-set -euo pipefail
-exe=$(realpath "${1:-build/tissuefem}")
-top=$(realpath "$(dirname "$0")/..")
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work"
-
-value() { # key in run.txt of output folder $1
-  sed -n "s/^$2 = \([^ ]*\).*/\1/p" "$1/run.txt"
-}
+source "$(dirname "$0")/common.sh"
 
 measure() { # mode, prm, settings...: prints solve/it (ms), median (ms), memory (MB), energy
   local mode=$1

@@ -13,10 +13,15 @@
 #                 per direction at the same 'Grading' (25): every cell
 #                 shrinks as 1 / n, the smallest (at the contact) from 1 a
 #                 to a / 4; hexahedra (Q1) and the same boxes split into
-#                 tetrahedra (P1); and Q1 refined adaptively (Kelly) from
+#                 tetrahedra (P1); Q1 refined adaptively (Kelly) from
 #                 n = 8, two load steps then six re-solves at full depth,
 #                 each after refining the 15 % of cells with the largest
-#                 indicator
+#                 indicator; and, where Gmsh is installed (Debian's gmsh),
+#                 P1 on tetrahedra graded by Gmsh (hertz_quarter.geo: edge
+#                 length h0 within 2 a of the contact, growing by g per
+#                 unit of distance beyond), for the pairs h0:g in
+#                 GMSH_MESHES (deal.II 9.4 cannot refine tetrahedra
+#                 locally)
 #   methods       the penalty (its default factor) and the augmented
 #                 Lagrangian (gaps within 1e-3 d)
 #   wall time     the whole run, start-up and output included (s), with
@@ -32,6 +37,7 @@
 # Usage (from the repository top, after building):
 #   bash parameters/studies/hertz.sh [path/to/tissuefem] [DIR]
 #   SIZES="8 12" METHODS=penalty bash parameters/studies/hertz.sh  (a quick look)
+#   GMSH_MESHES="" ...  (no Gmsh meshes)
 set -euo pipefail
 exe=$(realpath "${1:-build/tissuefem}")
 out=$(realpath -m "${2:-hertz-study}")
@@ -39,6 +45,8 @@ prm=$(realpath "$(dirname "$0")/../hertz_indentation.prm")
 mkdir -p "$out/runs"
 read -r -a sizes <<< "${SIZES-8 12 16 24 32}"
 read -r -a methods <<< "${METHODS:-penalty augmented_Lagrangian}"
+read -r -a gmsh_meshes <<< "${GMSH_MESHES-1.25e-4:0.2 1.25e-4:0.1 8.33e-5:0.1 6.25e-5:0.1}"
+geo=$(realpath "$(dirname "$0")/hertz_quarter.geo")
 # RADIUS=0.01: a sphere of 10 mm pressed 0.1 mm (a / R = 0.1 instead of
 # the scene's 0.025, the same contact radius a = 1 mm), to see how much of
 # the error is Hertz's own (his theory is the limit a / R -> 0).
@@ -102,6 +110,19 @@ for element in Q1 P1; do
     done
   done
 done
+if [ ${#gmsh_meshes[@]} -gt 0 ] && ! command -v gmsh > /dev/null 2>&1; then
+  echo "hertz.sh: gmsh not found (apt-get install gmsh), no Gmsh-graded tetrahedra" >&2
+  gmsh_meshes=()
+fi
+for pair in "${gmsh_meshes[@]}"; do
+  h0=${pair%:*} g=${pair#*:}
+  mesh=$out/runs/gmsh-$h0-$g.msh
+  gmsh -3 -format msh2 -setnumber h0 "$h0" -setnumber g "$g" "$geo" -o "$mesh" > "$mesh.log" 2>&1 ||
+    { echo "hertz.sh: gmsh failed (see $mesh.log)" >&2; continue; }
+  for method in "${methods[@]}"; do
+    run P1 "gmsh-h0=$h0-g=$g" "$method" --set "Geometry/Source=file" --set "Geometry/Mesh file=$mesh"
+  done
+done
 for method in "${methods[@]}"; do
   run Q1 adaptive "$method" --set "Geometry/Subdivisions=8, 8, 8" \
     --set "Time integration/Time step=0.5" --set "Time integration/End time=4" \
@@ -117,14 +138,19 @@ fi
 # error| (in %), and the mesh label.
 plots_f=""; plots_a=""
 for series in "Q1 n penalty" "Q1 n augmented_Lagrangian" "P1 n penalty" "P1 n augmented_Lagrangian" \
-              "Q1 adaptive penalty" "Q1 adaptive augmented_Lagrangian"; do
+              "Q1 adaptive penalty" "Q1 adaptive augmented_Lagrangian" \
+              "P1 gmsh penalty" "P1 gmsh augmented_Lagrangian"; do
   read -r element mesh method <<< "$series"
   file=$out/runs/$element-$mesh-$method.dat
   awk -F, -v e="$element" -v m="$mesh" -v me="$method" \
     '$1 == e && index($2, m) == 1 && $3 == me && $11 != "" && $11 !~ /failed/ {
        f = $7 < 0 ? -$7 : $7; r = $9 < 0 ? -$9 : $9; print $11, 100 * f, 100 * r, $2 }' "$csv" > "$file"
   [ -s "$file" ] || continue
-  title="$element ${mesh/n/graded boxes}, ${method//_/ }"
+  case $mesh in
+    n) title="$element graded boxes, ${method//_/ }" ;;
+    gmsh) title="$element Gmsh-graded, ${method//_/ }" ;;
+    *) title="$element $mesh, ${method//_/ }" ;;
+  esac
   plots_f="$plots_f${plots_f:+, }'$file' using 1:2 with linespoints lw 2 ps 1.3 title '$title'"
   plots_a="$plots_a${plots_a:+, }'$file' using 1:3 with linespoints lw 2 ps 1.3 title '$title'"
 done
@@ -132,7 +158,7 @@ gnuplot <<GNUPLOT
 set terminal pngcairo size 900,650 font ',11'
 set logscale xy
 set grid xtics ytics mxtics mytics lc rgb '#dddddd'
-set key outside below maxrows 3
+set key outside below maxrows 4
 set xlabel 'wall time of the run (s, 2 cores)'
 set output '$out/hertz_force_error.png'
 set title 'Hertz indentation: force error |F_h / F - 1| against wall time'

@@ -341,6 +341,7 @@ namespace tissuefem::solid
   {
     if (input.jacobian)
       matrices.resize(volume.size() * n_dofs * n_dofs);
+    mass_only = !(input.internal && input.u != nullptr);
     // An active region computes its own cells only, batched afresh, so
     // that its cost follows its size.
     const bool compact = input.cells && !input.jacobian;
@@ -505,8 +506,13 @@ namespace tissuefem::solid
                 const unsigned int i        = local_index[position % n_dofs];
                 const int         *e        = &entry[(c * n_dofs + i) * n_dofs];
                 const double      *K        = &matrices[position * n_dofs];
-                for (unsigned int j = 0; j < n_dofs; ++j)
-                  values[e[local_index[j]]] += K[j];
+                if (mass_only)
+                  for (unsigned int j = (position % n_dofs) % dim; j < n_dofs;
+                       j += dim)
+                    values[e[local_index[j]]] += K[j];
+                else
+                  for (unsigned int j = 0; j < n_dofs; ++j)
+                    values[e[local_index[j]]] += K[j];
               }
           }
       },

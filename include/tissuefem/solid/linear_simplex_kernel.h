@@ -214,5 +214,9 @@ namespace tissuefem::solid
     std::vector<double>       vectors, matrices;
     /// The most points of one cell (1, or n_q where a fibre varies).
     unsigned int most_points = 1;
+    /// Whether the last evaluation's matrices hold the mass only (no
+    /// elastic part: the nodal dilatation's), which couples each component
+    /// with itself alone: add_direct() then adds a third of the entries.
+    bool mass_only = false;
   };
 } // namespace tissuefem::solid
