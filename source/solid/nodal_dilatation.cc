@@ -342,6 +342,31 @@ namespace tissuefem::solid
     const auto          &material = materials.material(cell.material_id);
     const Tensor<2, dim> F_bar = std::pow(theta / determinant(F), 1. / dim) * F;
     MeanDilatationPoint<dim> sum;
+    // Without fibres one evaluation serves every point (weights sum to 1):
+    // no bookkeeping per point, and the residual's calls (every line-search
+    // trial) do not sum the tangent's zeros.
+    if (!material.uses_fibres())
+      {
+        const Tensor<1, dim> &a = fibres.at(cell.active_index, 0);
+        if (jacobian)
+          {
+            Tensor<2, dim> P_bar;
+            Tensor<4, dim> A_bar;
+            material.stress_and_tangent(
+              F_bar, a, P_bar, A_bar, materials.tangent_method());
+            if (materials.project_tangent())
+              materials::project_to_positive_definite(A_bar);
+            mean_dilatation_stress_and_tangent(F, theta, P_bar, A_bar, sum);
+            sum.phi_FF *= cell.volume;
+            sum.phi_F_theta *= cell.volume;
+            sum.phi_theta_theta *= cell.volume;
+          }
+        else
+          mean_dilatation_stress(F, theta, material.stress(F_bar, a), sum);
+        sum.phi_F *= cell.volume;
+        sum.phi_theta *= cell.volume;
+        return sum;
+      }
     // Points with the same fibre (all of them, for isotropic models) share
     // one evaluation: F is constant on the cell.
     std::vector<bool> done(weights.size(), false);

@@ -1,6 +1,5 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/parallel.h>
-#include <deal.II/base/work_stream.h>
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/trilinos_index_access.h>
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
@@ -208,8 +207,10 @@ namespace tissuefem::solid
     const AffineConstraints<double>   &rows,
     const bool                         inhomogeneous,
     const bool                         jacobian,
-    VectorType                        &residual)
+    VectorType                        &residual,
+    const Loads                       *loads)
   {
+    Assert(!loads || jacobian, ExcInternalError());
     const auto        &cells = nodal.cells;
     const unsigned int n     = cells.size();
     if (jacobian)
@@ -218,13 +219,7 @@ namespace tissuefem::solid
     // F, J, J F^{-T} of every cell here, and the vertices' dilatations.
     std::vector<Tensor<2, dim>> F(n), cofactor(n);
     std::vector<double>         J(n);
-    for (unsigned int g = 0; g < n; ++g)
-      {
-        F[g] = nodal.deformation_gradient(cells[g], u);
-        J[g] = determinant(F[g]);
-        if (J[g] != 0)
-          cofactor[g] = J[g] * transpose(invert(F[g]));
-      }
+    deformation(u, F, J, cofactor);
     const std::vector<double> sums = nodal.volume_times_J(J);
 
     // First pass, per owned cell: Psi-hat's derivatives at Jbar, and the
@@ -276,157 +271,15 @@ namespace tissuefem::solid
     pressure_sum.add(where, what);
     pressure_sum.compress(VectorOperation::add);
     pressure = pressure_sum;
-
-    // Second pass, per owned cell: its blocks of the system.
-    struct Copy
-    {
-      unsigned int                         o = 0;
-      FullMatrix<double>                   K;
-      Vector<double>                       r;
-      std::vector<types::global_dof_index> indices;
-    };
-    // The residual's displacement rows: this process's first ones here.
-    double        *residual_values = residual.trilinos_vector()[0];
-    Vector<double> r_u;
-    std::vector<types::global_dof_index> u_indices;
-    double                              *rhs_values = rhs.trilinos_vector()[0];
-    auto worker = [&](const std::vector<unsigned int>::const_iterator &it,
-                      int &,
-                      Copy &copy) {
-      copy.o               = it - owned_cells.cbegin();
-      const unsigned int g = *it;
-      add_cell(g,
-               terms[g].defined ? &terms[g].psi : nullptr,
-               J[g],
-               cofactor[g],
-               jacobian,
-               copy.K,
-               copy.r);
-      local_indices(g, copy.indices);
-    };
-    auto copier = [&](const Copy &copy) {
-      const unsigned int n_a = copy.indices.size();
-      const int         *row = &direct.row[std::size_t(copy.o) * n_a];
-      if (!jacobian)
-        {
-          // The displacement rows only: in place where they are owned and
-          // free (the line search's trials come here).
-          const unsigned int n_e = nodal.cells[owned_cells[copy.o]].dofs.size();
-          if (row[0] >= 0)
-            for (unsigned int i = 0; i < n_e; ++i)
-              residual_values[row[i]] += copy.r(i);
-          else
-            {
-              r_u.reinit(n_e, true);
-              for (unsigned int i = 0; i < n_e; ++i)
-                r_u(i) = copy.r(i);
-              u_indices.assign(copy.indices.begin(),
-                               copy.indices.begin() + n_e);
-              rows.distribute_local_to_global(r_u, u_indices, residual);
-            }
-        }
-      else if (row[0] >= 0)
-        for (unsigned int i = 0; i < n_a; ++i)
-          {
-            rhs_values[row[i]] += copy.r(i);
-            double              *values = direct.row_values[row[i]];
-            const std::uint16_t *entry
-              = &direct.entry[(std::size_t(copy.o) * n_a + i) * n_a];
-            for (unsigned int j = 0; j < n_a; ++j)
-              values[entry[j]] += copy.K(i, j);
-          }
-      else
-        augmented_rows.distribute_local_to_global(
-          copy.K, copy.r, copy.indices, matrix, rhs, inhomogeneous);
-    };
-    WorkStream::run(
-      owned_cells.cbegin(), owned_cells.cend(), worker, copier, 0, Copy());
+    std::vector<const MeanDilatationPoint<dim> *> psi(n, nullptr);
+    for (unsigned int e = 0; e < n; ++e)
+      if (terms[e].defined)
+        psi[e] = &terms[e].psi;
+    if (jacobian)
+      add_blocks(psi, J, cofactor, materials, loads, inhomogeneous);
+    else
+      add_residual(psi, J, cofactor, rows, residual);
     return inverted;
-  }
-
-
-  template <int dim>
-  void
-  NodalDilatationSystem<dim>::add_cell(const unsigned int              g,
-                                       const MeanDilatationPoint<dim> *psi,
-                                       const double                    J,
-                                       const Tensor<2, dim>           &cofactor,
-                                       const bool                      jacobian,
-                                       FullMatrix<double>             &K,
-                                       Vector<double>                 &r) const
-  {
-    const auto        &cell = nodal.cells[g];
-    const unsigned int n_e  = cell.dofs.size();
-    const unsigned int s0 = n_e, p0 = n_e + dim + 1;
-    r.reinit(n_e + 2 * (dim + 1));
-    // a_k = J F^{-T} grad N_k: dJ/du for (node k, component c) is a_k[c].
-    std::array<Tensor<1, dim>, dim + 1> a;
-    for (unsigned int k = 0; k <= dim; ++k)
-      a[k] = cofactor * cell.gradient[k];
-    const double *pressure_values = pressure.trilinos_vector()[0];
-    double        omega           = 0; // sum_b V_g / V_b pi_b
-    for (unsigned int k = 0; k <= dim; ++k)
-      omega += share[g][k] * pressure_values[pressure_entry[g][k]];
-    for (unsigned int i = 0; i < n_e; ++i)
-      {
-        const auto [k, c] = cell.node_component[i];
-        r(i) += omega * a[k][c];
-        if (psi)
-          r(i) += psi->phi_F[c] * cell.gradient[k];
-      }
-    if (!jacobian)
-      return;
-    K.reinit(n_e + 2 * (dim + 1), n_e + 2 * (dim + 1));
-    for (unsigned int i = 0; i < n_e; ++i)
-      {
-        const auto [k, c] = cell.node_component[i];
-        if (J != 0)
-          for (unsigned int j = 0; j < n_e; ++j)
-            {
-              // pi times the second derivative of J (nodal_dilatation.cc).
-              const auto [l, d] = cell.node_component[j];
-              K(i, j) += omega / J * (a[k][c] * a[l][d] - a[l][c] * a[k][d]);
-            }
-        // Z, and -I: the rows of p say s_b = Z_b du.
-        for (unsigned int b = 0; b <= dim; ++b)
-          {
-            K(p0 + b, i) += share[g][b] * a[k][c];
-            K(i, p0 + b) += share[g][b] * a[k][c];
-          }
-      }
-    for (unsigned int b = 0; b <= dim; ++b)
-      {
-        K(s0 + b, p0 + b) -= share[g][b];
-        K(p0 + b, s0 + b) -= share[g][b];
-      }
-    if (!psi)
-      return;
-    // The cell's own energy: phi_FF, and through Jbar = sum_b J_b / (d + 1)
-    // its couplings Y to s and H among the s.
-    std::array<Tensor<2, dim>, (dim + 1) * dim> dF;
-    for (unsigned int i = 0; i < n_e; ++i)
-      {
-        const auto [k, c] = cell.node_component[i];
-        dF[i]             = Tensor<2, dim>();
-        dF[i][c]          = cell.gradient[k];
-      }
-    for (unsigned int i = 0; i < n_e; ++i)
-      {
-        const Tensor<2, dim> AdF
-          = double_contract<2, 0, 3, 1>(psi->phi_FF, dF[i]);
-        for (unsigned int j = 0; j < n_e; ++j)
-          K(i, j) += scalar_product(AdF, dF[j]);
-        const double y = scalar_product(psi->phi_F_theta, dF[i]) / (dim + 1);
-        for (unsigned int b = 0; b <= dim; ++b)
-          {
-            K(s0 + b, i) += y;
-            K(i, s0 + b) += y;
-          }
-      }
-    const double h = psi->phi_theta_theta / ((dim + 1) * (dim + 1));
-    for (unsigned int b = 0; b <= dim; ++b)
-      for (unsigned int c = 0; c <= dim; ++c)
-        K(s0 + b, s0 + c) += h;
   }
 
 

@@ -702,26 +702,38 @@ namespace tissuefem::solid
   Solid<dim>::add_nodal_elastic(
     const Request                                             &request,
     VectorType                                                &residual,
-    std::vector<std::tuple<unsigned int, double, Point<dim>>> &inverted)
+    std::vector<std::tuple<unsigned int, double, Point<dim>>> &inverted,
+    const bool                                                 loads)
   {
     if (!nodal || !request.internal)
       return;
-    const auto undefined = nodal_system
-                             ? nodal_system->assemble(*request.u,
-                                                      materials,
-                                                      fibre_field,
-                                                      *request.rows,
-                                                      request.inhomogeneous,
-                                                      request.jacobian,
-                                                      residual)
-                             : nodal->assemble(*request.u,
-                                               materials,
-                                               fibre_field,
-                                               request.jacobian,
-                                               *request.rows,
-                                               request.inhomogeneous,
-                                               jacobian_matrix,
-                                               residual);
+    Assert(!loads || (nodal_system && request.jacobian), ExcInternalError());
+    typename NodalDilatationSystem<dim>::Loads cell_loads;
+    if (loads)
+      {
+        cell_loads.inertia          = request.inertia;
+        cell_loads.mass_coefficient = request.mass_jacobian_coefficient;
+        if (request.external)
+          cell_loads.gravity
+            = boundary_conditions.load_factor * boundary_conditions.gravity;
+      }
+    const auto undefined
+      = nodal_system ? nodal_system->assemble(*request.u,
+                                              materials,
+                                              fibre_field,
+                                              *request.rows,
+                                              request.inhomogeneous,
+                                              request.jacobian,
+                                              residual,
+                                              loads ? &cell_loads : nullptr)
+                     : nodal->assemble(*request.u,
+                                       materials,
+                                       fibre_field,
+                                       request.jacobian,
+                                       *request.rows,
+                                       request.inhomogeneous,
+                                       jacobian_matrix,
+                                       residual);
     inverted.insert(inverted.end(), undefined.begin(), undefined.end());
   }
 
@@ -808,7 +820,8 @@ namespace tissuefem::solid
   template void Solid<dim>::add_nodal_elastic(                                \
     const Request &,                                                          \
     VectorType &,                                                             \
-    std::vector<std::tuple<unsigned int, double, Point<dim>>> &);             \
+    std::vector<std::tuple<unsigned int, double, Point<dim>>> &,              \
+    const bool);                                                              \
   template void Solid<dim>::report_inversions(                                \
     const std::vector<std::tuple<unsigned int, double, Point<dim>>> &) const;
 

@@ -41,11 +41,18 @@ namespace tissuefem::solid
     boundary_conditions.set_time(request.time);
     input.gravity
       = boundary_conditions.load_factor * boundary_conditions.gravity;
-    input.internal            = elastic;
-    input.external            = request.external;
-    input.jacobian            = request.jacobian;
-    input.cells               = request.cells;
-    const auto inverted_cells = lean->evaluate(input);
+    input.internal = elastic;
+    input.external = request.external;
+    input.jacobian = request.jacobian;
+    input.cells    = request.cells;
+    // The nodal dilatation's Jacobians into its sparser system take the
+    // inertia and gravity into the same cell blocks as the elastic part
+    // (add_nodal_elastic()): the kernel has nothing left to do.
+    const bool loads_in_system
+      = nodal_system && request.jacobian && request.internal && !request.cells;
+    const auto inverted_cells
+      = loads_in_system ? std::vector<std::pair<unsigned int, double>>()
+                        : lean->evaluate(input);
 
     std::vector<bool> inverted(cache.cells().size(), false);
     std::vector<std::tuple<unsigned int, double, Point<dim>>> report;
@@ -95,7 +102,7 @@ namespace tissuefem::solid
           if (!inverted[c])
             add_cell(c);
         }
-    else
+    else if (!loads_in_system)
       lean->add_direct(local,
                        access.row_values,
                        access.entry,
@@ -105,7 +112,9 @@ namespace tissuefem::solid
     // request's constraints.
     const AffineConstraints<double> &rows = *request.rows;
     FullMatrix<double>               matrix(n, n);
-    for (unsigned int c = 0; !active_region && c < cache.cells().size(); ++c)
+    for (unsigned int c = 0;
+         !active_region && !loads_in_system && c < cache.cells().size();
+         ++c)
       {
         if (access.direct[c] || inverted[c]
             || (request.cells && !(*request.cells)[c]))
@@ -135,7 +144,7 @@ namespace tissuefem::solid
         else
           rows.distribute_local_to_global(rhs, dofs, residual);
       }
-    add_nodal_elastic(request, residual, report);
+    add_nodal_elastic(request, residual, report, loads_in_system);
     add_contributions(request, residual);
 
     residual.compress(VectorOperation::add);

@@ -64,6 +64,25 @@ namespace tissuefem::solid
     applies(const NodalDilatation<dim>      &nodal,
             const AffineConstraints<double> &constraints);
 
+    /**
+     * Inertia and gravity, added to the displacement rows of each cell's
+     * block when the Jacobian is assembled through the lean path: one
+     * insertion per cell instead of a second pass of the lean kernel into
+     * the P1 matrix (a third of the nodal dilatation's assembly on the
+     * 9,600-tetrahedra box). The closed-form P1 mass and gravity load of
+     * LinearSimplexKernel.
+     */
+    struct Loads
+    {
+      /// Ghosted w: the residual gets M w (null: none).
+      const VectorType *inertia = nullptr;
+      /// The Jacobian gets this times M.
+      double mass_coefficient = 0;
+      /// Acceleration of gravity, load factor included (length/time^2);
+      /// the residual gets minus its load.
+      Tensor<1, dim> gravity;
+    };
+
     /// For the mesh of @p discretization and its patches @p nodal.
     NodalDilatationSystem(const Discretization<dim>  &discretization,
                           const NodalDilatation<dim> &nodal);
@@ -75,7 +94,8 @@ namespace tissuefem::solid
      * side (finish() adds the residual's rows to the residual), else the
      * elastic residual into @p residual (the same as
      * NodalDilatation::assemble()'s, in O(cells) instead of O(cells times
-     * patch)). Returns the cells where Fbar is undefined, as
+     * patch)). With @p loads (only with @p jacobian) inertia and gravity
+     * too. Returns the cells where Fbar is undefined, as
      * NodalDilatation::assemble().
      */
     std::vector<std::tuple<unsigned int, double, Point<dim>>>
@@ -85,7 +105,8 @@ namespace tissuefem::solid
              const AffineConstraints<double>   &rows,
              const bool                         inhomogeneous,
              const bool                         jacobian,
-             VectorType                        &residual);
+             VectorType                        &residual,
+             const Loads                       *loads = nullptr);
 
     /// Forgets the last assembly's blocks (before the next one).
     void
@@ -127,6 +148,15 @@ namespace tissuefem::solid
              FullMatrix<double>             &K,
              Vector<double>                 &r) const;
 
+    /// Adds @p loads on cell @p g of density @p rho to its block @p K and
+    /// vector @p r (displacement rows and columns).
+    void
+    add_loads(const unsigned int  g,
+              const Loads        &loads,
+              const double        rho,
+              FullMatrix<double> &K,
+              Vector<double>     &r) const;
+
     /// The augmented indices of owned cell @p g's rows: its displacement
     /// dofs, then s and p at its vertices.
     void
@@ -140,6 +170,40 @@ namespace tissuefem::solid
     /// Fills uu_row and uu_entry for the layout of @p uu.
     void
     map_displacement_block(const MatrixType &uu);
+
+    /// F, J and J F^{-T} of every cell here for the ghosted @p u, in
+    /// parallel, reading @p u through ghost_index.
+    void
+    deformation(const VectorType            &u,
+                std::vector<Tensor<2, dim>> &F,
+                std::vector<double>         &J,
+                std::vector<Tensor<2, dim>> &cofactor);
+
+    /// Splits the direct cells' rows among the threads by vertex (parts,
+    /// others).
+    void
+    build_parts();
+
+    /// The Jacobian's cell blocks (with @p loads, if given) into the
+    /// system: the direct cells in parallel over parts, the others through
+    /// the constraints. @p psi per cell as add_cell() takes it.
+    void
+    add_blocks(const std::vector<const MeanDilatationPoint<dim> *> &psi,
+               const std::vector<double>                           &J,
+               const std::vector<Tensor<2, dim>>                   &cofactor,
+               const materials::MaterialSet<dim>                   &materials,
+               const Loads                                         *loads,
+               const bool inhomogeneous);
+
+    /// The residual alone (the line search's trials): each owned cell's
+    /// displacement rows computed in parallel, then added in a fixed order.
+    /// @p psi per cell as add_cell() takes it.
+    void
+    add_residual(const std::vector<const MeanDilatationPoint<dim> *> &psi,
+                 const std::vector<double>                           &J,
+                 const std::vector<Tensor<2, dim>>                   &cofactor,
+                 const AffineConstraints<double>                     &rows,
+                 VectorType                                          &residual);
 
     const NodalDilatation<dim> &nodal;
     /// Indices into @p nodal's cells of the owned ones.
@@ -171,5 +235,20 @@ namespace tissuefem::solid
     std::vector<std::array<int, dim + 1>> pressure_entry;
     /// Where the P1 matrix's rows and entries lie here (finish()).
     std::vector<int> uu_row, uu_entry;
+    /// Per cell of @p nodal and dof, its index in the ghosted vectors
+    /// (Trilinos' local index, the same for every ghosted vector of the
+    /// mesh): read without a global-to-local search per entry. Built on
+    /// the first assembly, for vectors of ghost_length entries.
+    std::vector<int> ghost_index;
+    int              ghost_length = -1;
+    /// The residual alone: per owned cell its displacement rows.
+    std::vector<double> cell_residuals;
+    /// The Jacobian's insertion without locks: per thread the direct owned
+    /// cells (positions in owned_cells) with a vertex in its range of
+    /// vertices and which of their rows lie there (bit i: row i); every
+    /// row belongs to one range. others: the owned cells with constrained
+    /// or other processes' rows. Built on the first Jacobian.
+    std::vector<std::vector<std::pair<unsigned int, std::uint32_t>>> parts;
+    std::vector<unsigned int>                                        others;
   };
 } // namespace tissuefem::solid

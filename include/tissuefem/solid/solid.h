@@ -377,12 +377,15 @@ namespace tissuefem::solid
 
     /// For the nodal dilatation: adds the elastic part of @p request (the
     /// patches' residual, and Jacobian into the sparser system or the wide
-    /// matrix) and appends its undefined cells to @p inverted.
+    /// matrix) and appends its undefined cells to @p inverted. With @p
+    /// loads (the lean path's Jacobians into the sparser system) the
+    /// request's inertia and gravity too, in the same cell blocks.
     void
     add_nodal_elastic(
       const Request                                             &request,
       VectorType                                                &residual,
-      std::vector<std::tuple<unsigned int, double, Point<dim>>> &inverted);
+      std::vector<std::tuple<unsigned int, double, Point<dim>>> &inverted,
+      const bool                                                 loads = false);
 
     /// Throws InvertedElementError naming the @p inverted cells (active
     /// cell index, det F, centre), gathered from every process.
