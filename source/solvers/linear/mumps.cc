@@ -96,19 +96,37 @@ namespace tissuefem::solvers::linear
     }
 
 
+    /// Whether a diagonal entry of @p A is zero on some process: a
+    /// saddle-point system (the nodal dilatation's pressure rows), which L
+    /// U can only factor by pivoting off the diagonal anyway.
+    bool
+    has_zero_diagonal(const Epetra_CrsMatrix &A)
+    {
+      Epetra_Vector diagonal(A.RowMap());
+      A.ExtractDiagonalCopy(diagonal);
+      int zero = 0;
+      for (int i = 0; i < diagonal.MyLength() && zero == 0; ++i)
+        zero = diagonal[i] == 0 ? 1 : 0;
+      int anywhere = 0;
+      A.Comm().MaxAll(&zero, &anywhere, 1);
+      return anywhere == 1;
+    }
+
+
     /**
      * MUMPS called directly (not through Amesos, which always asks it for
-     * an unsymmetric LU): if asked, and when the matrix is symmetric (as
-     * backward Euler's, the quasistatic, the linearly implicit Euler's and the
+     * an unsymmetric LU): where the matrix is symmetric (as backward
+     * Euler's, the quasistatic, the linearly implicit Euler's and the
      * nodal dilatation's saddle-point systems are, without friction) it
-     * is factorized as L D L^T with 1x1 and 2x2 pivots (MUMPS SYM = 2:
+     * may be factorized as L D L^T with 1x1 and 2x2 pivots (MUMPS SYM = 2:
      * symmetric indefinite), on the benchmark scenes 5-28 % less solve
      * time and 4-10 % less memory than L U (doc/studies.md, MUMPS L D
-     * L^T); otherwise as L U. The matrix is given distributed as it is
-     * (ICNTL(18) = 3), the right-hand side and solution gathered on
-     * process 0. The symbolic analysis is kept across Newton iterations
-     * and steps, and made again only when the matrix stops or starts
-     * being symmetric (friction that begins to slip). MUMPS: Amestoy et
+     * L^T): by default for saddle-point systems (a zero on the diagonal),
+     * for every symmetric matrix if asked; otherwise as L U. The matrix is
+     * given distributed as it is (ICNTL(18) = 3), the right-hand side and
+     * solution gathered on process 0. The symbolic analysis is kept across
+     * Newton iterations and steps, and made again only when the matrix stops or
+     * starts being symmetric (friction that begins to slip). MUMPS: Amestoy et
      * al. 2001 and its users' guide (doc/references.md).
      */
     class Mumps : public Interface
@@ -117,7 +135,10 @@ namespace tissuefem::solvers::linear
       explicit Mumps(ParameterHandler &prm)
       {
         prm.enter_subsection("Linear solver");
-        allow_symmetric = prm.get_bool("MUMPS symmetric factorization");
+        const std::string mode = prm.get("MUMPS symmetric factorization");
+        symmetric_when         = mode == "true"    ? When::symmetric
+                                 : mode == "false" ? When::never
+                                                   : When::saddle_point;
         prm.leave_subsection();
       }
 
@@ -132,18 +153,22 @@ namespace tissuefem::solvers::linear
         prm.enter_subsection("Linear solver");
         prm.declare_entry(
           "MUMPS symmetric factorization",
-          "false",
-          Patterns::Bool(),
+          "automatic",
+          Patterns::Selection("automatic|true|false"),
           "For Type = MUMPS (or direct). true: a symmetric matrix (checked "
           "before each factorization: |A v - A^T v| <= 1e-10 |A v| for a "
           "pseudo-random v) is factorized as L D L^T with 1x1 and 2x2 "
           "pivots, any other as L U; measured 5-28 % less solve time and "
           "4-10 % less memory on 7,500-12,000 unknowns "
-          "(benchmarks/symmetric_factorization.sh). false: always L U. Not "
-          "the default: on crushed tetrahedra with self contact the "
-          "recovery depends on round-off in Newton's path, and with L D "
-          "L^T 32 of 33 starts untangled at the automatic pressure against "
-          "33 with L U (doc/tests.md).");
+          "(benchmarks/symmetric_factorization.sh). automatic: L D L^T "
+          "only for symmetric matrices with a zero on the diagonal "
+          "(saddle-point systems: the nodal dilatation's; 11-21 % less "
+          "solve time and 7-15 % less step time on a 9,600-tetrahedra "
+          "box, benchmarks/nodal_dilatation_cost.sh), L U for the others: on "
+          "crushed tetrahedra with self contact the recovery depends on "
+          "round-off in Newton's path, and with L D L^T 32 of 33 starts "
+          "untangled at the automatic pressure against 33 with L U "
+          "(doc/tests.md). false: always L U.");
         prm.leave_subsection();
       }
 
@@ -199,9 +224,12 @@ namespace tissuefem::solvers::linear
       void
       factorize(const Epetra_CrsMatrix &M, LinearSolverStatistics &stats)
       {
-        const auto start         = std::chrono::steady_clock::now();
-        factorized               = false;
-        const bool symmetric_now = allow_symmetric && is_symmetric(M);
+        const auto start = std::chrono::steady_clock::now();
+        factorized       = false;
+        const bool symmetric_now
+          = symmetric_when != When::never
+            && (symmetric_when == When::symmetric || has_zero_diagonal(M))
+            && is_symmetric(M);
         if (!initialized || symmetric_now != symmetric)
           {
             terminate();
@@ -309,7 +337,14 @@ namespace tissuefem::solvers::linear
         factorized  = false;
       }
 
-      bool           allow_symmetric = false;
+      /// When a symmetric matrix is factorized as L D L^T.
+      enum class When
+      {
+        never,
+        saddle_point,
+        symmetric
+      } symmetric_when
+        = When::saddle_point;
       DMUMPS_STRUC_C id{};
       bool           initialized      = false;
       bool           factorized       = false;
@@ -332,8 +367,9 @@ namespace tissuefem::solvers::linear
     Mumps,
     "MUMPS",
     "parallel sparse direct solver (MUMPS), the robust choice for meshes up "
-    "to some 10^5 unknowns: L U, or L D L^T where the matrix is symmetric "
-    "with 'MUMPS symmetric factorization'; the symbolic analysis is kept "
+    "to some 10^5 unknowns: L U, or L D L^T for symmetric saddle-point "
+    "systems (or every symmetric matrix, see 'MUMPS symmetric "
+    "factorization'); the symbolic analysis is kept "
     "across iterations and steps.")
 
   namespace
