@@ -341,34 +341,41 @@ namespace tissuefem::solid
     // between them; F does not).
     const auto          &material = materials.material(cell.material_id);
     const Tensor<2, dim> F_bar = std::pow(theta / determinant(F), 1. / dim) * F;
+    // One point's derivatives, for the fibre @p a.
+    const auto evaluate
+      = [&](const Tensor<1, dim> &a, MeanDilatationPoint<dim> &point) {
+          if (jacobian)
+            {
+              Tensor<2, dim> P_bar;
+              Tensor<4, dim> A_bar;
+              material.stress_and_tangent(
+                F_bar, a, P_bar, A_bar, materials.tangent_method());
+              if (materials.project_tangent())
+                materials::project_to_positive_definite(A_bar);
+              mean_dilatation_stress_and_tangent(F, theta, P_bar, A_bar, point);
+            }
+          else
+            mean_dilatation_stress(F, theta, material.stress(F_bar, a), point);
+        };
     MeanDilatationPoint<dim> sum;
     // Without fibres one evaluation serves every point (weights sum to 1):
     // no bookkeeping per point, and the residual's calls (every line-search
     // trial) do not sum the tangent's zeros.
     if (!material.uses_fibres())
       {
-        const Tensor<1, dim> &a = fibres.at(cell.active_index, 0);
+        evaluate(fibres.at(cell.active_index, 0), sum);
+        sum.phi_F *= cell.volume;
+        sum.phi_theta *= cell.volume;
         if (jacobian)
           {
-            Tensor<2, dim> P_bar;
-            Tensor<4, dim> A_bar;
-            material.stress_and_tangent(
-              F_bar, a, P_bar, A_bar, materials.tangent_method());
-            if (materials.project_tangent())
-              materials::project_to_positive_definite(A_bar);
-            mean_dilatation_stress_and_tangent(F, theta, P_bar, A_bar, sum);
             sum.phi_FF *= cell.volume;
             sum.phi_F_theta *= cell.volume;
             sum.phi_theta_theta *= cell.volume;
           }
-        else
-          mean_dilatation_stress(F, theta, material.stress(F_bar, a), sum);
-        sum.phi_F *= cell.volume;
-        sum.phi_theta *= cell.volume;
         return sum;
       }
-    // Points with the same fibre (all of them, for isotropic models) share
-    // one evaluation: F is constant on the cell.
+    // Points with the same fibre share one evaluation: F is constant on
+    // the cell.
     std::vector<bool> done(weights.size(), false);
     for (unsigned int q = 0; q < weights.size(); ++q)
       {
@@ -383,18 +390,7 @@ namespace tissuefem::solid
               done[r] = true;
             }
         MeanDilatationPoint<dim> point;
-        if (jacobian)
-          {
-            Tensor<2, dim> P_bar;
-            Tensor<4, dim> A_bar;
-            material.stress_and_tangent(
-              F_bar, a, P_bar, A_bar, materials.tangent_method());
-            if (materials.project_tangent())
-              materials::project_to_positive_definite(A_bar);
-            mean_dilatation_stress_and_tangent(F, theta, P_bar, A_bar, point);
-          }
-        else
-          mean_dilatation_stress(F, theta, material.stress(F_bar, a), point);
+        evaluate(a, point);
         const double v = weight * cell.volume;
         sum.phi_F += v * point.phi_F;
         sum.phi_theta += v * point.phi_theta;
