@@ -53,15 +53,12 @@ namespace tissuefem::postprocess
 
   template <int dim>
   void
-  ContactOutput<dim>::execute(const Step &step)
+  ContactOutput<dim>::execute(const Step<dim> &step)
   {
-    const auto &contact = this->context->scene.obstacle_contact;
-    if (!contact)
+    if (!this->context->scene.obstacle_contact || !parallel_tools::is_root())
       return;
-    const auto reports = contact->report(step.u_ghosted, step.state.time);
-    if (!parallel_tools::is_root())
-      return;
-    const bool summarize = this->context->summary.due(step.number);
+    const auto &reports   = step.contact;
+    const bool  summarize = this->context->summary.due(step.number);
     for (const auto &r : reports)
       {
         file << step.state.time << ',' << r.name;

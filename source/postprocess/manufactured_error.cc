@@ -43,7 +43,7 @@ namespace tissuefem::postprocess
 
   template <int dim>
   void
-  ManufacturedError<dim>::execute(const Step &step)
+  ManufacturedError<dim>::execute(const Step<dim> &step)
   {
     const auto &manufactured = this->context->scene.manufactured;
     if (!manufactured)

@@ -95,7 +95,7 @@ namespace tissuefem::postprocess
 
   template <int dim>
   void
-  ProbeOutput<dim>::execute(const Step &step)
+  ProbeOutput<dim>::execute(const Step<dim> &step)
   {
     const auto values = probes->evaluate(step.u_ghosted);
     if (!parallel_tools::is_root())

@@ -87,7 +87,7 @@ namespace tissuefem::postprocess
 
   template <int dim>
   void
-  ReactionOutput<dim>::execute(const Step &step)
+  ReactionOutput<dim>::execute(const Step<dim> &step)
   {
     if (boundary_ids.empty())
       return;

@@ -47,7 +47,7 @@ namespace tissuefem::postprocess
 
   template <int dim>
   void
-  Statistics<dim>::execute(const Step &step)
+  Statistics<dim>::execute(const Step<dim> &step)
   {
     if (step.number == 0)
       return;

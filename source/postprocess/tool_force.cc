@@ -88,14 +88,14 @@ namespace tissuefem::postprocess
 
   template <int dim>
   void
-  ToolForce<dim>::execute(const Step &step)
+  ToolForce<dim>::execute(const Step<dim> &step)
   {
     const auto  &tools = this->context->scene.tools;
     unsigned int i     = 0;
     for (const auto &[name, tool] : tools)
       {
         const tool::Record<dim> record
-          = tool->record(step.state, *this->context->scene.solid);
+          = tool->record(step.state, *this->context->scene.solid, step.contact);
         const std::string label
           = tools.size() == 1 ? "tool force" : "tool force (" + name + ")";
         this->context->summary.line(

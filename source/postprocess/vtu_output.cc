@@ -69,7 +69,7 @@ namespace tissuefem::postprocess
 
   template <int dim>
   void
-  VtuOutput<dim>::execute(const Step &step)
+  VtuOutput<dim>::execute(const Step<dim> &step)
   {
     if (interval == 0 || step.number % interval != 0)
       return;

@@ -357,7 +357,14 @@ namespace tissuefem::problems
     VectorType u_ghosted;
     scene->discretization->initialize_vector(u_ghosted, true);
     u_ghosted = state.u;
-    const postprocess::Step current{step, report, state, u_ghosted};
+    // The obstacles' reports once per state, for the tools and the
+    // postprocessors alike (every process calls: they sum over them).
+    const contact::Reports<dim> reports
+      = scene->obstacle_contact
+          ? scene->obstacle_contact->report(u_ghosted, state.time)
+          : contact::Reports<dim>();
+    const postprocess::Step<dim> current{
+      step, report, state, u_ghosted, reports};
     for (auto &[name, postprocessor] : postprocessors)
       postprocessor->execute(current);
   }

@@ -260,11 +260,10 @@ namespace tissuefem::solid
                                          const double       rho,
                                          const Input       &input)
   {
-    const auto  &w       = work_space<dim>();
-    const bool   elastic = input.internal && input.u != nullptr;
-    const double mass    = rho / ((dim + 1) * (dim + 2));
-    double      *r       = &vectors[c * n_dofs];
-    double      *K = input.jacobian ? &matrices[c * n_dofs * n_dofs] : nullptr;
+    const auto &w       = work_space<dim>();
+    const bool  elastic = input.internal && input.u != nullptr;
+    double     *r       = &vectors[c * n_dofs];
+    double     *K = input.jacobian ? &matrices[c * n_dofs * n_dofs] : nullptr;
     std::fill(r, r + n_dofs, 0.);
     if (K)
       std::fill(K, K + n_dofs * n_dofs, 0.);
@@ -306,23 +305,23 @@ namespace tissuefem::solid
     if (input.external)
       for (unsigned int k = 0; k < n_nodes; ++k)
         for (unsigned int i = 0; i < dim; ++i)
-          r[k * dim + i] -= rho * input.gravity[i] * V / (dim + 1);
+          r[k * dim + i] -= gravity_load(rho, V, input.gravity[i]);
     if (input.w)
       {
         const int *G = &ghost[c * n_dofs];
         for (unsigned int k = 0; k < n_nodes; ++k)
           for (unsigned int l = 0; l < n_nodes; ++l)
             for (unsigned int i = 0; i < dim; ++i)
-              r[k * dim + i]
-                += (k == l ? 2. : 1.) * mass * V * input.w[G[l * dim + i]];
+              r[k * dim + i] += mass(rho, V, k == l) * input.w[G[l * dim + i]];
       }
     if (K)
       {
-        const double m = input.mass_jacobian_coefficient * mass * V;
+        const double c = input.mass_jacobian_coefficient;
         for (unsigned int k = 0; k < n_nodes; ++k)
           for (unsigned int l = k; l < n_nodes; ++l)
             for (unsigned int i = 0; i < dim; ++i)
-              K[(k * dim + i) * n_dofs + l * dim + i] += (k == l ? 2. : 1.) * m;
+              K[(k * dim + i) * n_dofs + l * dim + i]
+                += c * mass(rho, V, k == l);
         // The node blocks above the diagonal were computed; mirror them
         // (K is symmetric: A_ambn = A_bnam).
         for (unsigned int k = 0; k < n_nodes; ++k)

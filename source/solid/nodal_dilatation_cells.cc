@@ -9,6 +9,7 @@
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>
 
+#include <tissuefem/solid/linear_simplex_kernel.h>
 #include <tissuefem/solid/nodal_dilatation_system.h>
 
 #include <algorithm>
@@ -335,12 +336,11 @@ namespace tissuefem::solid
                                         FullMatrix<double> &K,
                                         Vector<double>     &r) const
   {
-    // The P1 simplex's consistent mass rho V (1 + delta_kl) / ((d + 1)(d +
-    // 2)) per component and its gravity load rho g V / (d + 1), as
+    // The P1 simplex's consistent mass and gravity load, as
     // LinearSimplexKernel::cell_objects() adds them.
-    const auto        &cell = nodal.cells[g];
-    const unsigned int n_e  = cell.dofs.size();
-    const double       mass = rho * cell.volume / ((dim + 1) * (dim + 2));
+    using Kernel                            = LinearSimplexKernel<dim>;
+    const auto                        &cell = nodal.cells[g];
+    const unsigned int                 n_e  = cell.dofs.size();
     std::array<double, dim *(dim + 1)> w{};
     if (loads.inertia)
       {
@@ -353,13 +353,13 @@ namespace tissuefem::solid
     for (unsigned int i = 0; i < n_e; ++i)
       {
         const auto [k, c] = cell.node_component[i];
-        r(i) -= rho * loads.gravity[c] * cell.volume / (dim + 1);
+        r(i) -= Kernel::gravity_load(rho, cell.volume, loads.gravity[c]);
         for (unsigned int j = 0; j < n_e; ++j)
           {
             const auto [l, d] = cell.node_component[j];
             if (d != c)
               continue;
-            const double m = (k == l ? 2. : 1.) * mass;
+            const double m = Kernel::mass(rho, cell.volume, k == l);
             r(i) += m * w[j];
             K(i, j) += loads.mass_coefficient * m;
           }

@@ -124,13 +124,11 @@ namespace tissuefem::tool
 
   template <int dim>
   Record<dim>
-  ContactTool<dim>::record(const time::State &state, solid::Solid<dim> &solid)
+  ContactTool<dim>::record(const time::State &state,
+                           solid::Solid<dim> &,
+                           const contact::Reports<dim> &reports)
   {
-    VectorType ghosted;
-    solid.get_discretization().initialize_vector(ghosted, true);
-    ghosted = state.u;
-    // Every process calls: the report sums over them.
-    const auto  reports = contact->report(ghosted, state.time);
+    AssertDimension(reports.size(), contact->obstacles().size());
     Record<dim> result;
     result.position = displacement(state.time);
     result.force    = -reports[index].force;

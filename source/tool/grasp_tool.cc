@@ -195,7 +195,9 @@ namespace tissuefem::tool
 
   template <int dim>
   Record<dim>
-  GraspTool<dim>::record(const time::State &state, solid::Solid<dim> &solid)
+  GraspTool<dim>::record(const time::State &state,
+                         solid::Solid<dim> &solid,
+                         const contact::Reports<dim> &)
   {
     const auto values
       = solid.held_force(state.u, state.a, state.time, state.damping);

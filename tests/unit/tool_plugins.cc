@@ -64,7 +64,9 @@ namespace
     }
 
     tool::Record<dim>
-    record(const time::State &state, solid::Solid<dim> &) override
+    record(const time::State &state,
+           solid::Solid<dim> &,
+           const contact::Reports<dim> &) override
     {
       tool::Record<dim> r;
       r.position[0] = state.time;

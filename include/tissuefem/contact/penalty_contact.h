@@ -161,6 +161,11 @@ namespace tissuefem::contact
       double min_pressure = 0, max_pressure = 0;
     };
 
+    /// Every process calls (the reports sum over them). A run computes
+    /// them once per state (Elasticity::postprocess()) and hands them to
+    /// the tools and postprocessors with the step (postprocess::Step):
+    /// with the augmented Lagrangian they depend on the multipliers of
+    /// the moment, so they are not cached here.
     std::vector<Report>
     report(const VectorType &u, const double time) const;
 
@@ -303,4 +308,9 @@ namespace tissuefem::contact
     /// Drops the states when the mesh changes.
     boost::signals2::scoped_connection mesh_changed;
   };
+
+  /// Each obstacle's report at one state, in the obstacles' order (empty
+  /// without obstacles).
+  template <int dim>
+  using Reports = std::vector<typename PenaltyContact<dim>::Report>;
 } // namespace tissuefem::contact

@@ -23,7 +23,7 @@ namespace tissuefem::postprocess
 
 
     void
-    execute(const Step &) override
+    execute(const Step<dim> &) override
     {
     }
 

@@ -29,6 +29,7 @@ namespace tissuefem::postprocess
   };
 
   /// One state to process.
+  template <int dim>
   struct Step
   {
     /// 0 for the initial state, then the number of steps taken.
@@ -39,6 +40,10 @@ namespace tissuefem::postprocess
     /// state.u with the ghost entries of this process's cells (point
     /// values, fields, errors need them).
     const VectorType &u_ghosted;
+    /// Each obstacle's force, penetration, area and pressures at this
+    /// state (empty without obstacles), computed once for every tool and
+    /// postprocessor that reports them.
+    const contact::Reports<dim> &contact;
   };
 
   /// What the whole run cost, for the end-of-run reports.
@@ -119,7 +124,7 @@ namespace tissuefem::postprocess
 
     /// Processes a state: the initial one (step 0) and each step's.
     virtual void
-    execute(const Step &step)
+    execute(const Step<dim> &step)
       = 0;
 
     /// At the end of the run, after the last step: adds entries to the run

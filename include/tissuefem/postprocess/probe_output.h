@@ -39,7 +39,7 @@ namespace tissuefem::postprocess
     restore(const std::vector<std::string> &lines) override;
 
     void
-    execute(const Step &step) override;
+    execute(const Step<dim> &step) override;
 
   private:
     /// Finds the probe points' cells on the current mesh.

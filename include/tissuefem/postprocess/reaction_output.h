@@ -35,7 +35,7 @@ namespace tissuefem::postprocess
     restore(const std::vector<std::string> &lines) override;
 
     void
-    execute(const Step &step) override;
+    execute(const Step<dim> &step) override;
 
   private:
     std::vector<types::boundary_id> boundary_ids;

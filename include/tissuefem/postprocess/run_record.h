@@ -26,7 +26,7 @@ namespace tissuefem::postprocess
 
 
     void
-    execute(const Step &) override
+    execute(const Step<dim> &) override
     {
     }
 

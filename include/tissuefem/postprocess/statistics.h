@@ -42,7 +42,7 @@ namespace tissuefem::postprocess
     restore(const std::vector<std::string> &lines) override;
 
     void
-    execute(const Step &step) override;
+    execute(const Step<dim> &step) override;
 
   private:
     std::ofstream file;

@@ -49,7 +49,7 @@ namespace tissuefem::postprocess
     restore(const std::vector<std::string> &lines) override;
 
     void
-    execute(const Step &step) override;
+    execute(const Step<dim> &step) override;
 
     void
     finish(const time::State &state,

@@ -32,7 +32,7 @@ namespace tissuefem::postprocess
     restore(const std::vector<std::string> &lines) override;
 
     void
-    execute(const Step &step) override;
+    execute(const Step<dim> &step) override;
 
   private:
     /// Writes the pieces, the .pvtu and the .pvd of step @p step.

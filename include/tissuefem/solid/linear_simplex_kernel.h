@@ -49,6 +49,25 @@ namespace tissuefem::solid
     static constexpr unsigned int n_nodes = dim + 1;
     static constexpr unsigned int n_dofs  = dim * (dim + 1);
 
+    /// The P1 simplex's consistent mass between nodes k and l, per
+    /// component (the same component at both): rho V (1 + delta_kl) / ((d
+    /// + 1)(d + 2)), the exact integral of two barycentric coordinates
+    /// over the simplex. Shared with the nodal dilatation's cell blocks
+    /// (NodalDilatationSystem::Loads).
+    static constexpr double
+    mass(const double rho, const double V, const bool same_node)
+    {
+      return (same_node ? 2. : 1.) * rho * V / ((dim + 1) * (dim + 2));
+    }
+
+    /// Its load per node and component under the acceleration @p g:
+    /// rho g V / (d + 1).
+    static constexpr double
+    gravity_load(const double rho, const double V, const double g)
+    {
+      return rho * g * V / (dim + 1);
+    }
+
     /// Whether the kernel computes what the general path would: linear
     /// simplices in 2D or 3D, the displacement formulation or the nodal
     /// dilatation (whose elastic part Solid takes from its patches, asking

@@ -76,7 +76,9 @@ namespace tissuefem::tool
 
     /// The contact force on the tool after a step, and the haptic samples.
     Record<dim>
-    record(const time::State &state, solid::Solid<dim> &solid) override;
+    record(const time::State           &state,
+           solid::Solid<dim>           &solid,
+           const contact::Reports<dim> &contact) override;
 
     std::string
     summary() const override;

@@ -97,7 +97,9 @@ namespace tissuefem::tool
     /// The force after a step (every process calls), and the haptic
     /// forces extrapolated for the instants since the previous step.
     Record<dim>
-    record(const time::State &state, solid::Solid<dim> &solid) override;
+    record(const time::State           &state,
+           solid::Solid<dim>           &solid,
+           const contact::Reports<dim> &contact) override;
 
     /// The haptic report: updates, share within the budget, extrapolation
     /// error.

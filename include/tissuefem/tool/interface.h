@@ -124,9 +124,13 @@ namespace tissuefem::tool
     }
 
     /// After a step (every process calls): where the tool is, the force on
-    /// it, and the haptic forces sent since the previous step.
+    /// it, and the haptic forces sent since the previous step. @p contact:
+    /// each obstacle's report at @p state (empty without obstacles).
     virtual Record<dim>
-    record(const time::State &state, solid::Solid<dim> &solid) = 0;
+    record(const time::State           &state,
+           solid::Solid<dim>           &solid,
+           const contact::Reports<dim> &contact)
+      = 0;
 
     /// The end-of-run report (one or more lines, no trailing newline).
     virtual std::string
