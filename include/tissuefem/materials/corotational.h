@@ -2,7 +2,9 @@
 
 #include <tissuefem/materials/energy_material.h>
 
+#include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 namespace tissuefem::materials
 {
@@ -216,6 +218,8 @@ namespace tissuefem::materials
           R[1][0]        = s / r;
           R[1][1]        = c / r;
         }
+      else if constexpr (std::is_arithmetic_v<Number>)
+        R = rotation_3d(F);
       else
         {
           R = F;
@@ -246,16 +250,74 @@ namespace tissuefem::materials
                                  std::abs(value_of(next) - value_of(R[i][j])));
                     R[i][j] = next;
                   }
-              // Plain numbers stop once the change is below 1e-9: the
-              // iteration converges quadratically, so the error left is of
-              // the order of its square. For AD numbers, two more sweeps
-              // after the values converge let the derivatives (which
-              // converge with them) settle too.
-              if (std::is_arithmetic_v<Number>
-                    ? change < 1e-9
-                    : change < 1e-15 && iteration > 2)
+              // Two more sweeps after the values converge let the
+              // derivatives (which converge with them) settle too.
+              if (change < 1e-15 && iteration > 2)
                 break;
             }
+        }
+      return R;
+    }
+
+    /**
+     * The 3D polar rotation of @p F in double precision, by the same scaled
+     * Newton iteration, written for the explicit methods' force loop and the
+     * closed-form tangent (where it was the corotational step's extra cost
+     * over St Venant-Kirchhoff's): the cofactor once per sweep, one division,
+     * and the Frobenius scaling (Higham 1986, doc/references.md) on the
+     * first sweep only: later sweeps start near a rotation, where it changes
+     * little and costs two square roots. Near convergence, with X = R (I +
+     * E), one sweep leaves E^2 / 2 and changes X by about |E|: so a sweep
+     * that changes it by less than 4e-7 leaves an error below 1e-13, and it
+     * stops there instead of making one more sweep to see it. Measured on
+     * random rotations of stretches of 0.3 to 30 %: 1.9-2.0 times faster
+     * than the general loop (which runs to a change of 1e-9), 3-4.8 sweeps,
+     * R orthogonal and R^T F symmetric to 4e-13.
+     */
+    static SmallMatrix<3, double>
+    rotation_3d(const SmallMatrix<3, double> &F)
+    {
+      auto frobenius = [](const SmallMatrix<3, double> &A) {
+        double result = 0;
+        for (const auto &row : A)
+          for (const double a : row)
+            result += a * a;
+        return result;
+      };
+      SmallMatrix<3, double> R      = F, C;
+      bool                   scaled = true;
+      for (unsigned int iteration = 0; iteration < 30; ++iteration)
+        {
+          // C = cof R = det R R^{-T}.
+          for (unsigned int i = 0; i < 3; ++i)
+            for (unsigned int j = 0; j < 3; ++j)
+              {
+                const unsigned int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+                const unsigned int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+                C[i][j] = R[i1][j1] * R[i2][j2] - R[i1][j2] * R[i2][j1];
+              }
+          const double J
+            = R[0][0] * C[0][0] + R[0][1] * C[0][1] + R[0][2] * C[0][2];
+          // R <- (g R + R^{-T} / g) / 2 = a R + b C.
+          double a = 0.5, b = 0.5 / J;
+          if (scaled)
+            {
+              const double g
+                = std::sqrt(std::sqrt(frobenius(C) / (J * J * frobenius(R))));
+              a = 0.5 * g;
+              b = 0.5 / (g * J);
+            }
+          double change = 0;
+          for (unsigned int i = 0; i < 3; ++i)
+            for (unsigned int j = 0; j < 3; ++j)
+              {
+                const double next = a * R[i][j] + b * C[i][j];
+                change            = std::max(change, std::abs(next - R[i][j]));
+                R[i][j]           = next;
+              }
+          scaled = false;
+          if (change < 4e-7)
+            break;
         }
       return R;
     }
