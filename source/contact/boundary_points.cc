@@ -2,6 +2,10 @@
 
 #include <tissuefem/contact/boundary_points.h>
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
 namespace tissuefem::contact
 {
   template <int dim>
@@ -71,9 +75,95 @@ namespace tissuefem::contact
                       fe_values.shape_value_component(i, q, component[i]));
                 }
             }
+    // L: the largest sum of |phi_i| of one component at a point.
+    lebesgue = 1;
+    for (unsigned int p = 0; p < positions.size(); ++p)
+      for (unsigned int c = 0; c < dim; ++c)
+        {
+          double sum = 0;
+          for (unsigned int i = 0; i < n_dofs; ++i)
+            if (component[i] == c)
+              sum += std::abs(values[p * n_dofs + i]);
+          lebesgue = std::max(lebesgue, sum);
+        }
     local_index.clear();
+    ++builds;
     stale          = false;
     built_for_dofs = discretization.dof_handler.n_dofs();
+  }
+
+
+  template <int dim>
+  void
+  BoundaryPoints<dim>::index(const VectorType &u) const
+  {
+    const auto &vector = u.trilinos_vector();
+    if (local_index.size() == dof_indices.size()
+        && indexed_length == vector.MyLength())
+      return;
+    indexed_length = vector.MyLength();
+    local_index.resize(dof_indices.size());
+    for (unsigned int k = 0; k < dof_indices.size(); ++k)
+      {
+        local_index[k] = vector.Map().LID(
+          static_cast<TrilinosWrappers::types::int_type>(dof_indices[k]));
+        AssertThrow(local_index[k] >= 0,
+                    ExcMessage("contact: a boundary face's degree of "
+                               "freedom is not in the ghosted vector"));
+      }
+    ++builds;
+    distinct_local = local_index;
+    std::sort(distinct_local.begin(), distinct_local.end());
+    distinct_local.erase(std::unique(distinct_local.begin(),
+                                     distinct_local.end()),
+                         distinct_local.end());
+  }
+
+
+  template <int dim>
+  void
+  BoundaryPoints<dim>::prepare(const VectorType &u) const
+  {
+    faces();
+    index(u);
+  }
+
+
+  template <int dim>
+  void
+  BoundaryPoints<dim>::values_of(const VectorType    &u,
+                                 std::vector<double> &reference) const
+  {
+    faces();
+    index(u);
+    const double *entries = u.trilinos_vector()[0];
+    reference.resize(distinct_local.size());
+    for (unsigned int k = 0; k < distinct_local.size(); ++k)
+      reference[k] = entries[distinct_local[k]];
+  }
+
+
+  template <int dim>
+  double
+  BoundaryPoints<dim>::motion_bound(const VectorType          &u,
+                                    const std::vector<double> &reference) const
+  {
+    faces();
+    index(u);
+    AssertDimension(reference.size(), distinct_local.size());
+    const double *entries = u.trilinos_vector()[0];
+    double        largest = 0;
+    for (unsigned int k = 0; k < distinct_local.size(); ++k)
+      {
+        const double change
+          = std::abs(entries[distinct_local[k]] - reference[k]);
+        // A displacement that is not finite bounds nothing: every face is
+        // then evaluated (and Newton's checks see it).
+        if (!std::isfinite(change))
+          return std::numeric_limits<double>::infinity();
+        largest = std::max(largest, change);
+      }
+    return std::sqrt(double(dim)) * lebesgue * largest;
   }
 
 
@@ -87,20 +177,7 @@ namespace tissuefem::contact
     // alike (as the lean kernel's ghost indices assume): the positions of
     // the faces' entries are looked up once per mesh.
     const auto &vector = u.trilinos_vector();
-    if (local_index.size() != dof_indices.size()
-        || indexed_length != vector.MyLength())
-      {
-        indexed_length = vector.MyLength();
-        local_index.resize(dof_indices.size());
-        for (unsigned int k = 0; k < dof_indices.size(); ++k)
-          {
-            local_index[k] = vector.Map().LID(
-              static_cast<TrilinosWrappers::types::int_type>(dof_indices[k]));
-            AssertThrow(local_index[k] >= 0,
-                        ExcMessage("contact: a boundary face's degree of "
-                                   "freedom is not in the ghosted vector"));
-          }
-      }
+    index(u);
     local.resize(n_dofs);
     const double *entries = vector[0];
     const int    *where   = &local_index[face.first_dof];

@@ -98,9 +98,44 @@ namespace tissuefem::contact
              const VectorType        &u,
              std::vector<Point<dim>> &x) const;
 
+    /// The faces' degrees of freedom's values in the ghosted @p u (each
+    /// once), the reference of motion_bound().
+    void
+    values_of(const VectorType &u, std::vector<double> &reference) const;
+
+    /**
+     * A bound on how far any point of any face has moved from where it was
+     * at the displacement values_of() gave as @p reference to the ghosted
+     * @p u (length units): sqrt(dim) L max_i |u_i - reference_i|, with L
+     * the largest sum over one component's shape functions of |phi_i| at a
+     * point (1 for linear elements, whose values are non-negative and sum
+     * to 1). A few microseconds: one pass over the faces' values.
+     */
+    double
+    motion_bound(const VectorType          &u,
+                 const std::vector<double> &reference) const;
+
+    /// Rebuilds the faces if the mesh changed, and finds where their
+    /// entries lie in the layout of the ghosted @p u if it is new.
+    void
+    prepare(const VectorType &u) const;
+
+    /// How many times the faces have been built or their entries found in
+    /// a new layout: a change voids values_of()'s references and anything
+    /// kept per face (call prepare() first).
+    unsigned int
+    generation() const
+    {
+      return builds;
+    }
+
   private:
     void
     build() const;
+
+    /// Finds local_index (and the distinct entries) for @p u's layout.
+    void
+    index(const VectorType &u) const;
 
     const solid::Discretization<dim> &discretization;
     unsigned int                      n_q = 0, n_dofs = 0;
@@ -122,6 +157,11 @@ namespace tissuefem::contact
     /// The local length of the vector local_index was found in (another
     /// layout finds them anew).
     mutable int indexed_length = -1;
+    /// The distinct entries of local_index, sorted.
+    mutable std::vector<int> distinct_local;
+    /// L of motion_bound(), and the number of builds.
+    mutable double       lebesgue = 1;
+    mutable unsigned int builds   = 0;
     /// deformed()'s buffer of a face's nodal values.
     mutable std::vector<double> local;
   };

@@ -305,6 +305,29 @@ namespace tissuefem::contact
     /// step (obstacle frame), the stick point of those that come into
     /// contact in it.
     std::unordered_map<std::uint64_t, Point<dim>> step_start;
+    /**
+     * What for_each_face() keeps between calls to skip faces far from
+     * every obstacle without computing where they are: each face's
+     * clearance g(c) - r to each obstacle when last measured, at the
+     * faces' displacement values and the obstacles' offsets of then. A
+     * face has moved by at most BoundaryPoints::motion_bound() since, an
+     * obstacle by the change of its offset (they translate), and the
+     * distance is 1-Lipschitz: so where the clearance minus both still
+     * exceeds the largest multiplier over k, no point of the face can act.
+     * Measured anew once the motions exceed a quarter of the faces' mean
+     * diameter, or the faces change.
+     */
+    struct Clearances
+    {
+      unsigned int                generation = 0;
+      std::vector<double>         reference;
+      std::vector<Tensor<1, dim>> offsets;
+      /// Per face and obstacle (length units; -infinity: not measured).
+      std::vector<double> clearance;
+      /// The motion up to which they serve (length units).
+      double limit = 0;
+    };
+    mutable Clearances clearances;
     /// Drops the states when the mesh changes.
     boost::signals2::scoped_connection mesh_changed;
   };
