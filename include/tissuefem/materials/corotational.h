@@ -265,14 +265,15 @@ namespace tissuefem::materials
      * closed-form tangent (where it was the corotational step's extra cost
      * over St Venant-Kirchhoff's): the cofactor once per sweep, one division,
      * and the Frobenius scaling (Higham 1986, doc/references.md) on the
-     * first sweep only: later sweeps start near a rotation, where it changes
-     * little and costs two square roots. Near convergence, with X = R (I +
-     * E), one sweep leaves E^2 / 2 and changes X by about |E|: so a sweep
-     * that changes it by less than 4e-7 leaves an error below 1e-13, and it
-     * stops there instead of making one more sweep to see it. Measured on
-     * random rotations of stretches of 0.3 to 30 %: 1.9-2.0 times faster
-     * than the general loop (which runs to a change of 1e-9), 3-4.8 sweeps,
-     * R orthogonal and R^T F symmetric to 4e-13.
+     * first sweep and while sweeps still change R by more than 0.1: nearer
+     * a rotation it changes little and costs two square roots, but far from
+     * one (F nearly singular) unscaled sweeps only halve the error each. Near
+     * convergence, with X = R (I + E), one sweep leaves E^2 / 2 and changes X
+     * by about |E|: so a sweep that changes it by less than 4e-7 leaves an
+     * error below 1e-13, and it stops there instead of making one more sweep to
+     * see it. Measured on random rotations of stretches of 0.3 to 30 %: 1.9-2.0
+     * times faster than the general loop (which runs to a change of 1e-9),
+     * 3-4.8 sweeps, R orthogonal and R^T F symmetric to 4e-13.
      */
     static SmallMatrix<3, double>
     rotation_3d(const SmallMatrix<3, double> &F)
@@ -315,7 +316,7 @@ namespace tissuefem::materials
                 change            = std::max(change, std::abs(next - R[i][j]));
                 R[i][j]           = next;
               }
-          scaled = false;
+          scaled = change > 0.1;
           if (change < 4e-7)
             break;
         }
