@@ -179,7 +179,7 @@ namespace tissuefem::contact
     buffer << in.rdbuf();
     const std::string bytes = buffer.str();
     require(!bytes.empty(), parameter, "'" + file + "' is empty (0 bytes)");
-    std::string extension   = std::filesystem::path(file).extension().string();
+    std::string extension = std::filesystem::path(file).extension().string();
     for (char &c : extension)
       c = std::tolower(static_cast<unsigned char>(c));
     VertexList vertices;

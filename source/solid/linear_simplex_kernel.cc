@@ -316,12 +316,12 @@ namespace tissuefem::solid
       }
     if (K)
       {
-        const double c = input.mass_jacobian_coefficient;
+        const double shift = input.mass_jacobian_coefficient;
         for (unsigned int k = 0; k < n_nodes; ++k)
           for (unsigned int l = k; l < n_nodes; ++l)
             for (unsigned int i = 0; i < dim; ++i)
               K[(k * dim + i) * n_dofs + l * dim + i]
-                += c * mass(rho, V, k == l);
+                += shift * mass(rho, V, k == l);
         // The node blocks above the diagonal were computed; mirror them
         // (K is symmetric: A_ambn = A_bnam).
         for (unsigned int k = 0; k < n_nodes; ++k)
