@@ -63,36 +63,6 @@ namespace tissuefem::boundary
         "continuation, down to 'Time integration/Maximum step halvings'), "
         "and a run that stops reports the load factor it reached. A "
         "manufactured solution needs 1 (or automatic).");
-      prm.declare_entry(
-        "Self contact pressure",
-        "automatic",
-        Patterns::Anything(),
-        "Overlap pressure p_c (Pa if SI; 0: off): where the deformed body "
-        "overlaps itself, its boundary facets inside the body elsewhere are "
-        "pushed back into their own part with the pressure p_c. This is "
-        "the gradient of p_c times the volume the body covers more than "
-        "once (contact/self_contact.h), so it resolves overlaps that are "
-        "already there (a tangled crushed start, a fold-over) as well as "
-        "new ones. Which facets push is decided at each step's start. "
-        "Backward Euler, quasistatic and linearly implicit Euler runs only. "
-        "'automatic': twice the shear modulus of the stiffest invertible "
-        "neo-Hookean material where the mesh has triangles or tetrahedra "
-        "(which, crushed, can settle tangled) and the integrator takes it, "
-        "0 otherwise; the first lines of a run say which. Measured on 33 "
-        "crushed starts (doc/tests.md): twice the shear modulus untangled "
-        "all of them. Costs (boundary facets)^2 solid angles a step.");
-      prm.declare_entry(
-        "Self contact tangent",
-        "false",
-        Patterns::Bool(),
-        "false: each overlapping facet's force at the step's start is held "
-        "over the step (a dead load, no tangent). true: over a step each "
-        "such facet has the energy of the cone from its centre at the "
-        "step's start (contact/self_contact.h), so that Newton gets the "
-        "tangent of its turning and stretching; measured on 33 crushed "
-        "starts it untangled all of them at 1 to 1.3 times the shear "
-        "modulus but made Newton fail on a third of them at twice it, "
-        "where the dead load untangled all (doc/tests.md).");
       prm.declare_entry("Initial displacement",
                         "0",
                         Patterns::Anything(),
@@ -117,8 +87,6 @@ namespace tissuefem::boundary
     initial_displacement = prm.get("Initial displacement");
     initial_velocity     = prm.get("Initial velocity");
     load_factor          = prm.get("Load factor");
-    self_contact         = Utilities::trim(prm.get("Self contact pressure"));
-    self_contact_tangent = prm.get_bool("Self contact tangent");
     prm.leave_subsection();
   }
 
@@ -177,37 +145,6 @@ namespace tissuefem::boundary
   }
 
 
-  void
-  BoundaryParameters::resolve_self_contact(const double       shear_modulus,
-                                           const bool         takes_it,
-                                           const std::string &why)
-  {
-    if (self_contact == "automatic")
-      {
-        // Twice the shear modulus: the middle of the measured window
-        // (doc/tests.md, 'inversion recovery').
-        self_contact_pressure = takes_it ? 2 * shear_modulus : 0.;
-        self_contact_note     = "automatic: " + why;
-        return;
-      }
-    const std::string name = "Boundary conditions/Self contact pressure";
-    const std::string must
-      = "must be 'automatic' or a pressure >= 0 (0: off), not '" + self_contact
-        + "'";
-    std::vector<double> value;
-    try
-      {
-        value = parse_numbers(self_contact, "Parameter '" + name + "'");
-      }
-    catch (const InputError &)
-      {
-        require(false, name, must);
-      }
-    require(value.size() == 1 && value[0] >= 0, name, must);
-    self_contact_pressure = value[0];
-  }
-
-
   template <int dim>
   BoundaryConditions<dim>::BoundaryConditions(
     const BoundaryParameters &parameters)
@@ -239,10 +176,8 @@ namespace tissuefem::boundary
           {id, make_function<dim>(expressions, dim, neumann_name)});
         loads_name_time_ = loads_name_time_ || names_time(expressions);
       }
-    self_contact_pressure = parameters.self_contact_pressure;
-    self_contact_note     = parameters.self_contact_note;
-    factor_expression     = Utilities::trim(parameters.load_factor);
-    factor_note           = parameters.load_factor_note;
+    factor_expression = Utilities::trim(parameters.load_factor);
+    factor_note       = parameters.load_factor_note;
     require(factor_expression != "automatic",
             "Boundary conditions/Load factor",
             "'automatic' must be resolved by the scene "
@@ -322,20 +257,6 @@ namespace tissuefem::boundary
     if (!factor_note.empty())
       text += "; " + factor_note;
     return text + ")";
-  }
-
-
-  template <int dim>
-  std::string
-  BoundaryConditions<dim>::describe_self_contact() const
-  {
-    std::ostringstream text;
-    text << "self contact pressure p_c = " << self_contact_pressure
-         << " (stress units; 0: off";
-    if (!self_contact_note.empty())
-      text << "; " << self_contact_note;
-    text << ")";
-    return text.str();
   }
 
 

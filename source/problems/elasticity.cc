@@ -554,8 +554,9 @@ namespace tissuefem::problems
            << ", integrator '" << time_parameters.integrator
            << "', linear solver '" << linear_solver->name() << "'\n"
            << geometry::describe_boundary_ids(scene->triangulation) << '\n'
-           << scene->boundary_conditions->describe_load_factor() << '\n'
-           << scene->boundary_conditions->describe_self_contact() << std::endl;
+           << scene->boundary_conditions->describe_load_factor() << std::endl;
+    for (const auto &line : scene->notes)
+      screen << line << std::endl;
     // The table is printed at the end of a finished run, before the line
     // that says where the files went.
     TimerOutput timer(screen, TimerOutput::never, TimerOutput::wall_times);

@@ -1,8 +1,7 @@
 #include <tissuefem/base/input_error.h>
 #include <tissuefem/base/parallel.h>
 #include <tissuefem/base/parameter_tools.h>
-#include <tissuefem/contact/penalty_contact.h>
-#include <tissuefem/contact/self_contact.h>
+#include <tissuefem/forces/registry.h>
 #include <tissuefem/geometry/mesh_parts.h>
 #include <tissuefem/scene/scene.h>
 #include <tissuefem/time/interface.h>
@@ -32,26 +31,6 @@ namespace tissuefem
       Capabilities         can;
     };
 
-    /// The registered integrators that, with their default settings, have
-    /// the capability @p has: "a, b or c", for messages.
-    std::string
-    integrators_with(bool Capabilities::*has)
-    {
-      ParameterHandler defaults;
-      time::TimeParameters::declare_parameters(defaults);
-      std::vector<std::string> names;
-      for (const auto &[name, entry] :
-           time::IntegratorRegistry::instance().all())
-        if (entry.create(defaults)->capabilities().*has)
-          names.push_back(name);
-      std::string list;
-      for (unsigned int i = 0; i < names.size(); ++i)
-        list += (i == 0                  ? ""
-                 : i + 1 == names.size() ? " or "
-                                         : ", ")
-                + names[i];
-      return list;
-    }
   } // namespace
 
 
@@ -61,100 +40,26 @@ namespace tissuefem
   {
     tool::ToolRegistry<dim>::instance().declare_parameters(prm);
     boundary::ManufacturedParameters::declare_parameters(prm);
-    contact::Obstacle<dim>::declare_parameters(prm);
-    contact::PenaltyContact<dim>::declare_parameters(prm);
+    forces::ContributionRegistry<dim>::instance().declare_parameters(prm);
   }
 
 
   namespace
   {
-    /**
-     * Rayleigh damping needs an integrator that applies it; self contact
-     * one that begins each step (where it takes its weights); contact with
-     * obstacles one that takes a penalty force of (u, t) (the penalty
-     * method, obstacles that may move) or one that updates contact
-     * multipliers (the augmented Lagrangian). Others would ignore them
-     * unseen.
-     */
-    template <int dim>
+    /// Rayleigh damping needs an integrator that applies it: others would
+    /// ignore it unseen. (Each force contribution checks what it needs.)
     void
-    check_integrator_capabilities(
-      ParameterHandler                          &prm,
-      const ChosenIntegrator                    &integrator,
-      const double                               self_contact_pressure,
-      const std::vector<contact::Obstacle<dim>> &obstacles)
+    check_rayleigh_damping(const ChosenIntegrator &integrator)
     {
-      const Capabilities &can = integrator.can;
-      // The lists of integrators are made only for a message (each
-      // constructs every registered integrator).
-      const auto refuse = [&](const std::string &parameter,
-                              const std::string &what,
-                              bool Capabilities::*needed,
-                              const std::string  &why = "") {
-        throw InputError("Parameter '" + parameter + "': " + what
-                         + " Time integration/Integrator = "
-                         + integrators_with(needed) + " (not '"
-                         + integrator.parameters.integrator + "'"
-                         + (why.empty() ? "" : ": " + why) + ")");
-      };
       for (const auto &[name, value] :
            {std::pair("mass", integrator.parameters.rayleigh_mass),
             std::pair("stiffness", integrator.parameters.rayleigh_stiffness)})
-        if (value != 0 && !can.rayleigh_damping)
-          refuse(std::string("Time integration/Rayleigh ") + name + " damping",
-                 "must be 0 unless",
-                 &Capabilities::rayleigh_damping);
-      if (self_contact_pressure != 0 && !can.begins_steps)
-        refuse("Boundary conditions/Self contact pressure",
-               "needs",
-               &Capabilities::begins_steps);
-      if (obstacles.empty())
-        return;
-      prm.enter_subsection("Contact");
-      const bool penalty = prm.get("Method") == "penalty";
-      prm.leave_subsection();
-      if (penalty && !can.penalty_contact)
-        refuse(obstacles.front().slot + "/Shape",
-               "contact with obstacles by a penalty needs",
-               &Capabilities::penalty_contact,
-               can.taken_away);
-      if (!penalty && !can.augmented_lagrangian)
-        refuse(obstacles.front().slot + "/Shape",
-               "contact with obstacles by the augmented Lagrangian needs",
-               &Capabilities::augmented_lagrangian);
-    }
-
-    /**
-     * 'Self contact pressure = automatic': crushed tetrahedra (triangles)
-     * of the invertible model can settle tangled, which elasticity holds
-     * (doc/tests.md, inversion recovery), so there self contact is on at
-     * twice the shear modulus, where it untangled every one of 33 crushed
-     * starts; hexahedra recover by elasticity alone.
-     */
-    template <int dim>
-    void
-    resolve_self_contact(const ChosenIntegrator              &integrator,
-                         const materials::MaterialParameters &materials,
-                         boundary::BoundaryParameters        &boundary,
-                         const Triangulation<dim>            &mesh)
-    {
-      double shear = 0;
-      for (unsigned int m = 0; m < materials.model_names.size(); ++m)
-        if (materials.model_names[m] == "invertible neo-Hookean")
-          shear = std::max(shear, materials.constants[m].mu);
-      const bool  takes     = integrator.can.begins_steps;
-      const bool  simplices = !mesh.all_reference_cells_are_hyper_cube();
-      std::string why
-        = shear == 0   ? "no invertible neo-Hookean material"
-          : !simplices ? "the invertible model on quadrilaterals or hexahedra, "
-                         "which recover by elasticity alone"
-          : !takes     ? "integrator '" + integrator.parameters.integrator
-                       + "' does not take it"
-                   : "twice the shear modulus of the invertible "
-                     "neo-Hookean model on triangles or tetrahedra";
-      boundary.resolve_self_contact(shear,
-                                    shear > 0 && simplices && takes,
-                                    why);
+        if (value != 0 && !integrator.can.rayleigh_damping)
+          throw InputError(
+            std::string("Parameter 'Time integration/Rayleigh ") + name
+            + " damping': must be 0 unless Time integration/Integrator = "
+            + forces::integrators_with(&Capabilities::rayleigh_damping)
+            + " (not '" + integrator.parameters.integrator + "')");
     }
   } // namespace
 
@@ -192,10 +97,6 @@ namespace tissuefem
       boundary_parameters.resolve_load_factor(
         !integrator.can.in_time && !manufactured_parameters.enabled, end_time);
     }
-    resolve_self_contact<dim>(integrator,
-                              material_parameters,
-                              boundary_parameters,
-                              triangulation);
     boundary_conditions = std::make_unique<boundary::BoundaryConditions<dim>>(
       boundary_parameters);
     boundary_conditions->check_boundary_ids(triangulation);
@@ -223,17 +124,7 @@ namespace tissuefem
         manufactured->impose_on(*boundary_conditions);
       }
 
-    auto obstacles
-      = contact::Obstacle<dim>::create_all(prm, parameter_directory);
-    check_integrator_capabilities(prm,
-                                  integrator,
-                                  boundary_parameters.self_contact_pressure,
-                                  obstacles);
-
-    // A tool may hold a part only once it acts, and an obstacle only once
-    // the part touches it; the check needs the constraints known up front.
-    if (!integrator.can.in_time && tools.empty() && obstacles.empty())
-      check_every_part_held();
+    check_rayleigh_damping(integrator);
 
     solid::FiniteElementParameters fe_parameters;
     fe_parameters.parse_parameters(prm);
@@ -243,24 +134,30 @@ namespace tissuefem
     solid          = std::make_unique<solid::Solid<dim>>(*discretization,
                                                 *materials,
                                                 *boundary_conditions);
-    if (!obstacles.empty())
-      {
-        // The penalty scales with the stiffest material's Young's modulus,
-        // E = mu (3 lambda + 2 mu) / (lambda + mu).
-        double modulus = 0;
-        for (const auto &c : material_parameters.constants)
-          modulus
-            = std::max(modulus,
-                       c.mu * (3 * c.lambda + 2 * c.mu) / (c.lambda + c.mu));
-        obstacle_contact = std::make_shared<contact::PenaltyContact<dim>>(
-          prm, *discretization, std::move(obstacles), modulus);
-        solid->add_force_contribution(obstacle_contact);
-      }
-    if (boundary_parameters.self_contact_pressure > 0)
-      solid->add_force_contribution(std::make_shared<contact::SelfContact<dim>>(
-        *discretization,
-        boundary_parameters.self_contact_pressure,
-        boundary_parameters.self_contact_tangent));
+    // Every registered kind of force contribution the file asks for.
+    const forces::SceneData<dim> data{parameter_directory,
+                                      material_parameters,
+                                      *discretization,
+                                      integrator.parameters.integrator,
+                                      integrator.can,
+                                      notes};
+    bool                         held = false;
+    for (const auto &[name, entry] :
+         forces::ContributionRegistry<dim>::instance().all())
+      if (std::shared_ptr<forces::Interface<dim>> c = entry.create(prm, data))
+        {
+          held = held || c->may_hold_body();
+          if (const auto p
+              = std::dynamic_pointer_cast<contact::PenaltyContact<dim>>(c))
+            obstacle_contact = p;
+          contributions.emplace(name, c);
+          solid->add_force_contribution(c);
+        }
+
+    // A tool may hold a part only once it acts, and an obstacle only once
+    // the part touches it; the check needs the constraints known up front.
+    if (!integrator.can.in_time && tools.empty() && !held)
+      check_every_part_held();
     for (auto &[name, t] : tools)
       t->attach(obstacle_contact.get());
     check_initial_data();

@@ -20,6 +20,7 @@
 
 #include <tissuefem/base/application.h>
 
+#include "../run_program.h"
 #include "../tests.h"
 
 #include <cmath>
@@ -68,29 +69,19 @@ main(int argc, char **argv)
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   const OneWriter                  one_writer;
 
-  const std::string        directory = "results-explicit-contact";
-  std::vector<std::string> arguments
-    = {"tissuefem",
-       std::string(SOURCE_DIR) + "/../../parameters/muscle_palpation.prm",
-       "--set",
-       "Output/Directory=" + directory,
-       "--set",
-       "Time integration/Integrator=damped central difference",
-       "--set",
-       "Time integration/Time step=2e-5",
-       "--set",
-       "Time integration/End time=0.04",
-       "--set",
-       "Output/VTU/Interval=0"};
-  std::vector<char *> argv_run;
-  for (auto &a : arguments)
-    argv_run.push_back(a.data());
-  std::ostringstream muted;
-  std::streambuf    *screen = std::cout.rdbuf(muted.rdbuf());
-  const int          status
-    = tissuefem::run_command_line(argv_run.size(), argv_run.data());
-  std::cout.rdbuf(screen);
-  MPI_Barrier(MPI_COMM_WORLD);
+  const std::string directory = "results-explicit-contact";
+  const int         status    = tissuefem_tests::run_program(
+    {std::string(SOURCE_DIR) + "/../../parameters/muscle_palpation.prm",
+                "--set",
+                "Output/Directory=" + directory,
+                "--set",
+                "Time integration/Integrator=damped central difference",
+                "--set",
+                "Time integration/Time step=2e-5",
+                "--set",
+                "Time integration/End time=0.04",
+                "--set",
+                "Output/VTU/Interval=0"});
 
   auto        tool       = read_csv(directory + "/tool_force.csv");
   auto        statistics = read_csv(directory + "/statistics.csv");

@@ -27,6 +27,7 @@
 
 #include <tissuefem/base/application.h>
 
+#include "../run_program.h"
 #include "../tests.h"
 
 #include <cmath>
@@ -56,8 +57,7 @@ namespace
   {
     const std::string        directory = "results-" + name;
     std::vector<std::string> arguments
-      = {"tissuefem",
-         std::string(SOURCE_DIR) + "/../../parameters/hertz_indentation.prm",
+      = {std::string(SOURCE_DIR) + "/../../parameters/hertz_indentation.prm",
          "--set",
          "Output/Directory=" + directory,
          "--set",
@@ -67,14 +67,7 @@ namespace
         arguments.push_back("--set");
         arguments.push_back(o);
       }
-    std::vector<char *> argv;
-    for (auto &a : arguments)
-      argv.push_back(a.data());
-    std::ostringstream muted;
-    std::streambuf    *screen = std::cout.rdbuf(muted.rdbuf());
-    const int status = tissuefem::run_command_line(argv.size(), argv.data());
-    std::cout.rdbuf(screen);
-    MPI_Barrier(MPI_COMM_WORLD);
+    const int status = run_program(arguments);
 
     Measured      result;
     std::ifstream in(directory + "/contact.csv");

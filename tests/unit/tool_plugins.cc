@@ -14,6 +14,7 @@
 #include <tissuefem/base/application.h>
 #include <tissuefem/tool/interface.h>
 
+#include "../run_program.h"
 #include "../tests.h"
 
 #include <cmath>
@@ -138,14 +139,7 @@ end
       file << scene << "subsection Marker\n  set Enabled = "
            << (marker ? "true" : "false") << "\nend\n";
     }
-    std::vector<std::string> arguments = {"tissuefem", "scene.prm"};
-    std::vector<char *>      argv;
-    for (auto &a : arguments)
-      argv.push_back(a.data());
-    std::ostringstream muted;
-    std::streambuf    *screen = std::cout.rdbuf(muted.rdbuf());
-    const int          status = run_command_line(argv.size(), argv.data());
-    std::cout.rdbuf(screen);
+    const int status = tissuefem_tests::run_program({"scene.prm"});
     return status;
   }
 

@@ -32,25 +32,8 @@ namespace tissuefem::boundary
     void
     resolve_load_factor(const bool quasistatic, const std::string &end_time);
 
-    /**
-     * Replaces 'Self contact pressure = automatic' by @p shear_modulus if
-     * the run @p takes_it (an invertible model on simplices, an integrator
-     * that begins steps), else 0, noting @p why; reads a number otherwise.
-     */
-    void
-    resolve_self_contact(const double       shear_modulus,
-                         const bool         takes_it,
-                         const std::string &why);
-
     std::string dirichlet, neumann, body_force, gravity, initial_displacement,
       initial_velocity, load_factor;
-    /// 'Self contact pressure' as written, and what it resolved to
-    /// (stress units) with the reason of 'automatic'.
-    std::string self_contact          = "automatic";
-    double      self_contact_pressure = 0;
-    std::string self_contact_note;
-    /// 'Self contact tangent'.
-    bool self_contact_tangent = false;
     /// Why 'Load factor = automatic' became what it is (empty if the file
     /// gave a factor); see resolve_load_factor().
     std::string load_factor_note;
@@ -98,10 +81,6 @@ namespace tissuefem::boundary
     std::string
     describe_load_factor() const;
 
-    /// "self contact pressure p_c = ..." with the reason of 'automatic'.
-    std::string
-    describe_self_contact() const;
-
     /// Whether 'Load factor' names t (else it is a constant).
     bool
     load_factor_names_time() const;
@@ -146,11 +125,7 @@ namespace tissuefem::boundary
     /// Whether every body force expression is the literal "0".
     bool body_force_is_zero;
     /// Acceleration of gravity (m/s^2 if SI); multiplied by rho_0.
-    Tensor<1, dim> gravity;
-    /// 'Self contact pressure' (Pa if SI; 0: no self contact).
-    double self_contact_pressure = 0;
-    /// Why it is what it is, for 'automatic' (empty otherwise).
-    std::string                    self_contact_note;
+    Tensor<1, dim>                 gravity;
     std::unique_ptr<Function<dim>> initial_displacement;
     std::unique_ptr<Function<dim>> initial_velocity;
 

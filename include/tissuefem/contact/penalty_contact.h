@@ -8,6 +8,7 @@
 #include <tissuefem/contact/coulomb.h>
 #include <tissuefem/contact/obstacle.h>
 #include <tissuefem/forces/interface.h>
+#include <tissuefem/forces/registry.h>
 #include <tissuefem/solid/discretization.h>
 
 #include <boost/signals2/connection.hpp>
@@ -84,10 +85,17 @@ namespace tissuefem::contact
   class PenaltyContact : public forces::Interface<dim>
   {
   public:
-    /// 'Contact/Penalty factor', 'Method', 'Gap tolerance' and
-    /// 'Maximum multiplier updates'.
+    /// The obstacle slots (Obstacle::declare_parameters()) and 'Contact/
+    /// Penalty factor', 'Method', 'Gap tolerance', 'Maximum multiplier
+    /// updates', 'Start penetration tolerance' and 'Tangential penalty
+    /// ratio'.
     static void
     declare_parameters(ParameterHandler &prm);
+
+    /// Contact with the obstacles the file fills in (none: null), once the
+    /// integrator chosen is found to honour the method chosen.
+    static std::unique_ptr<forces::Interface<dim>>
+    create(ParameterHandler &prm, const forces::SceneData<dim> &scene);
 
     /// With the obstacles @p obstacles of the scene (none: inactive) and
     /// the tissue's largest Young's modulus @p modulus (stress units).
@@ -134,6 +142,13 @@ namespace tissuefem::contact
             const double       time,
             const unsigned int update,
             std::string       &message) override;
+
+    /// A body may rest on an obstacle.
+    bool
+    may_hold_body() const override
+    {
+      return !obstacle_list.empty();
+    }
 
     /// Whether any obstacle moves.
     bool

@@ -4,6 +4,7 @@
 #include <deal.II/lac/full_matrix.h>
 
 #include <tissuefem/forces/interface.h>
+#include <tissuefem/forces/registry.h>
 #include <tissuefem/solid/discretization.h>
 
 #include <boost/signals2/connection.hpp>
@@ -60,6 +61,21 @@ namespace tissuefem::contact
   class SelfContact : public forces::Interface<dim>
   {
   public:
+    /// 'Boundary conditions/Self contact pressure' and 'Self contact
+    /// tangent' (in that subsection, where parameter files have them).
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    /**
+     * Self contact at the pressure the file gives or, for 'automatic',
+     * twice the shear modulus of the stiffest invertible neo-Hookean
+     * material on triangles or tetrahedra with an integrator that begins
+     * steps (null where that is 0), noting the pressure and why in
+     * @p scene's notes.
+     */
+    static std::unique_ptr<forces::Interface<dim>>
+    create(ParameterHandler &prm, const forces::SceneData<dim> &scene);
+
     /// With the pressure p_c (stress units, > 0); without @p tangent each
     /// facet's force at the step's start is held over the step as a dead
     /// load (energy -f . u, no Jacobian).

@@ -28,8 +28,9 @@ namespace tissuefem::forces
    * - f_ext, so a force f = -dE/du on the body enters with the right sign)
    * and, for Newton, d2E/du2 to its Jacobian; the implicit energy that the
    * line search and the trust region minimize adds E. Each contribution is
-   * one file pair; the scene hands it to the solid
-   * (Solid::add_force_contribution()).
+   * one file pair, registered with TISSUEFEM_REGISTER_FORCE_CONTRIBUTION
+   * (forces/registry.h); the scene creates those the file asks for and
+   * hands them to the solid (Solid::add_force_contribution()).
    *
    * Every process calls every function. u is the ghosted displacement of
    * the solid's current mesh: a contribution reads the mesh from the
@@ -110,6 +111,15 @@ namespace tissuefem::forces
     {
       (void)u;
       (void)time;
+    }
+
+    /// Whether it may hold a body against rigid motion (an obstacle the
+    /// body rests on), so that a quasistatic scene need not fix every
+    /// part by a Dirichlet boundary.
+    virtual bool
+    may_hold_body() const
+    {
+      return false;
     }
 
     /// Whether E depends on t itself (a moving obstacle): then a quasistatic

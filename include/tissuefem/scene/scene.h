@@ -15,6 +15,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace tissuefem
 {
@@ -42,9 +43,9 @@ namespace tissuefem
   class Scene
   {
   public:
-    /// Declares the subsections only a scene reads (Tool, Manufactured
-    /// solution); the others are shared with other problems and declared
-    /// by the application.
+    /// Declares the subsections only a scene reads (the tools', Manufactured
+    /// solution, the force contributions'); the others are shared with other
+    /// problems and declared by the application.
     static void
     declare_parameters(ParameterHandler &prm);
 
@@ -74,9 +75,15 @@ namespace tissuefem
     /// The tools the file asks for (none, one, or one of each registered
     /// kind), by their registered names.
     std::map<std::string, std::unique_ptr<tool::Interface<dim>>> tools;
-    /// Contact with the rigid obstacles of 'Contact' (none: null), also
-    /// handed to the solid as a force contribution.
+    /// The registered force contributions the file asks for (contact with
+    /// obstacles, self contact), by name, each also handed to the solid.
+    std::map<std::string, std::shared_ptr<forces::Interface<dim>>>
+      contributions;
+    /// Of those, contact with the rigid obstacles of 'Contact' (none:
+    /// null), which tools push and outputs report.
     std::shared_ptr<contact::PenaltyContact<dim>> obstacle_contact;
+    /// What the contributions resolved, for the run's first lines.
+    std::vector<std::string> notes;
 
   private:
     /// Initial and boundary data must be finite where they are used.
