@@ -285,10 +285,26 @@ namespace tissuefem::solid
 
   template <int dim>
   void
-  NodalDilatationSystem<dim>::finish(const MatrixType &uu, VectorType &residual)
+  NodalDilatationSystem<dim>::finish(const MatrixType *uu, VectorType &residual)
   {
     matrix.compress(VectorOperation::add);
     rhs.compress(VectorOperation::add);
+    if (uu)
+      add_displacement_block(*uu);
+    // The displacement rows come first among the owned unknowns here and
+    // are all of @p residual's.
+    const unsigned int n_owned_u = residual.locally_owned_size();
+    double            *into      = residual.trilinos_vector()[0];
+    const double      *elastic   = rhs.trilinos_vector()[0];
+    for (unsigned int i = 0; i < n_owned_u; ++i)
+      into[i] += elastic[i];
+  }
+
+
+  template <int dim>
+  void
+  NodalDilatationSystem<dim>::add_displacement_block(const MatrixType &uu)
+  {
     const Epetra_CrsMatrix &from = uu.trilinos_matrix();
     if (uu_entry.empty())
       map_displacement_block(uu);
@@ -302,13 +318,6 @@ namespace tissuefem::solid
         for (int j = 0; j < length; ++j, ++k)
           into[uu_entry[k]] += values[j];
       }
-    // The displacement rows come first among the owned unknowns here and
-    // are all of @p residual's.
-    const unsigned int n_owned_u = residual.locally_owned_size();
-    double            *into      = residual.trilinos_vector()[0];
-    const double      *elastic   = rhs.trilinos_vector()[0];
-    for (unsigned int i = 0; i < n_owned_u; ++i)
-      into[i] += elastic[i];
   }
 
 

@@ -679,7 +679,7 @@ namespace tissuefem::solid
     if (request.jacobian)
       jacobian_matrix.compress(VectorOperation::add);
     if (request.jacobian && nodal_system)
-      nodal_system->finish(jacobian_matrix, residual);
+      nodal_system->finish(&jacobian_matrix, residual);
     if (three_field.active() && request.internal)
       three_field.initialized();
     report_inversions(inverted);

@@ -114,10 +114,11 @@ namespace tissuefem::solid
 
     /// After assemble() (or alone, with no elastic part): adds the rest of
     /// the displacement block (inertia, the loads' and contributions'
-    /// derivatives, constrained rows) from the compressed P1 matrix @p uu,
-    /// and the elastic residual to the compressed @p residual.
+    /// derivatives, constrained rows) from the compressed P1 matrix @p uu
+    /// (null: it has nothing to add), and the elastic residual to the
+    /// compressed @p residual.
     void
-    finish(const MatrixType &uu, VectorType &residual);
+    finish(const MatrixType *uu, VectorType &residual);
 
     /// The system's matrix (after finish()).
     const MatrixType &
@@ -170,6 +171,10 @@ namespace tissuefem::solid
     /// Fills uu_row and uu_entry for the layout of @p uu.
     void
     map_displacement_block(const MatrixType &uu);
+
+    /// Adds the entries of @p uu to the system's displacement block.
+    void
+    add_displacement_block(const MatrixType &uu);
 
     /// F, J and J F^{-T} of every cell here for the ghosted @p u, in
     /// parallel, reading @p u through ghost_index.
