@@ -97,7 +97,8 @@ main(int argc, char **argv)
           double             distance = -1;
           try
             {
-              distance = recover(cells, start, ratio * shear, tangent);
+              distance
+                = recover(cells, start, std::to_string(ratio * shear), tangent);
             }
           catch (const std::exception &)
             {

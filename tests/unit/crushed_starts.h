@@ -103,14 +103,16 @@ namespace tissuefem_tests
   }
 
 
-  /// Runs the block from @p start to t = 3 with the self-contact
-  /// pressure @p contact_pressure (Pa); the distance from the rest shape at
-  /// the end.
+  /// Runs the block from @p start to t = 3 with 'Self contact pressure =
+  /// @p contact_pressure' (Pa, or 'automatic'); the distance from the rest
+  /// shape at the end. The scene's notes (what 'automatic' resolved to) go
+  /// to @p notes if given.
   inline double
-  recover(const std::string &cells,
-          const std::string &start,
-          const double       contact_pressure,
-          const std::string &tangent = "false")
+  recover(const std::string        &cells,
+          const std::string        &start,
+          const std::string        &contact_pressure,
+          const std::string        &tangent = "false",
+          std::vector<std::string> *notes   = nullptr)
   {
     ParameterHandler prm;
     tissuefem::declare_all_parameters(prm);
@@ -131,7 +133,7 @@ namespace tissuefem_tests
         set Initial displacement = )"
                                 + start + R"(
         set Self contact pressure = )"
-                                + std::to_string(contact_pressure) + R"(
+                                + contact_pressure + R"(
         set Self contact tangent = )"
                                 + tangent + R"(
       end
@@ -141,6 +143,8 @@ namespace tissuefem_tests
       end
     )");
     SolidScene<3> scene(prm);
+    if (notes)
+      *notes = scene.notes;
     auto         &solid      = *scene.solid;
     time::Context context    = scene.context();
     auto          integrator = scene.integrator(prm);
@@ -156,15 +160,18 @@ namespace tissuefem_tests
   }
 
 
-  /// Every start on @p cells, with the self-contact pressure
-  /// @p contact_pressure (Pa; 0: none): one line each; every run must
-  /// complete and recover the rest shape.
+  /// Every start on @p cells with the default 'Self contact pressure =
+  /// automatic', which must resolve to @p expected_pressure (Pa): one line
+  /// for that, then one per start; every run must complete and recover the
+  /// rest shape.
   inline void
-  check_crushed_starts(const std::string &cells, const double contact_pressure)
+  check_crushed_starts(const std::string &cells, const double expected_pressure)
   {
+    bool first = true;
     for (const auto &[name, start] : crushed_starts())
       {
-        double distance = 1e300;
+        std::vector<std::string> notes;
+        double                   distance = 1e300;
         // The run's screen output (step halvings) stays out of the
         // compared output.
         std::ostringstream muted;
@@ -172,7 +179,7 @@ namespace tissuefem_tests
         std::string        error;
         try
           {
-            distance = recover(cells, start, contact_pressure);
+            distance = recover(cells, start, "automatic", "false", &notes);
           }
         catch (const std::exception &e)
           {
@@ -181,6 +188,21 @@ namespace tissuefem_tests
         std::cout.rdbuf(screen);
         if (!error.empty())
           std::cout << "  " << error << '\n';
+        if (first)
+          {
+            // "self contact pressure p_c = <Pa> (...)"
+            const std::string key      = "self contact pressure p_c = ";
+            double            resolved = std::nan("");
+            for (const auto &line : notes)
+              if (line.rfind(key, 0) == 0)
+                resolved = std::stod(line.substr(key.size()));
+            check(std::abs(resolved - expected_pressure)
+                    <= 1e-5 * expected_pressure,
+                  cells + ": 'automatic' resolves to p_c = "
+                    + std::to_string(expected_pressure) + " Pa",
+                  "resolved to " + std::to_string(resolved));
+            first = false;
+          }
         check_small(distance,
                     1e-3,
                     cells + ", " + name + ": distance from the rest shape");

@@ -1,7 +1,8 @@
 // Blocks of hexahedra of the invertible neo-Hookean model recover their
 // rest shape from crushed and scrambled starts, many seeds each, by
-// elasticity alone (no self contact: hexahedra do not settle tangled from
-// these starts): see crushed_starts.h for the starts and the measure.
+// elasticity alone: 'Boundary conditions/Self contact pressure =
+// automatic' must resolve to 0 on hexahedra, which do not settle tangled
+// from these starts (see crushed_starts.h for the starts and the measure).
 
 #include "crushed_starts.h"
 
