@@ -1,4 +1,5 @@
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/multithread_info.h>
 
 #include <tissuefem/base/input_error.h>
 #include <tissuefem/base/parallel.h>
@@ -28,7 +29,8 @@ namespace tissuefem::tool
                      const unsigned int dim,
                      const double       period,
                      const Limits      &limits,
-                     const std::string &port_file)
+                     const std::string &port_file,
+                     const bool         reserve_core)
       : timeout(timeout)
       , dim(dim)
       , period(period)
@@ -80,6 +82,21 @@ namespace tissuefem::tool
       << " (lines 't x y z'; port also in " << port_file << ")" << std::endl;
     if (parallel_tools::is_root())
       worker = std::thread([this] { serve(); });
+    // On two cores with both simulating, the client saw answers 1.3-1.6 ms
+    // late at the 99th percentile (the thread waited for a core); with one
+    // core left to it, 0.27 ms (doc/studies.md).
+    const unsigned int threads = MultithreadInfo::n_threads();
+    if (reserve_core && parallel_tools::is_root() && threads > 1
+        && threads >= MultithreadInfo::n_cores())
+      {
+        restored_threads = threads;
+        MultithreadInfo::set_thread_limit(threads - 1);
+        parallel_tools::screen()
+          << "tool: the simulation uses " << threads - 1 << " of " << threads
+          << " threads while the live client is served, leaving a core to "
+             "its answers ('Live reserved core')"
+          << std::endl;
+      }
   }
 
 
@@ -88,6 +105,8 @@ namespace tissuefem::tool
     stop = true;
     if (worker.joinable())
       worker.join();
+    if (restored_threads > 0)
+      MultithreadInfo::set_thread_limit(restored_threads);
     close_client();
     if (listener >= 0)
       ::close(listener);

@@ -42,6 +42,8 @@ namespace tissuefem::tool
     /// 'Live position limit' and 'Live jump limit' (length units; 0:
     /// from the body's diameter).
     double position_limit = 0, jump_limit = 0;
+    /// 'Live reserved core'.
+    bool reserve_core = true;
   };
 
 

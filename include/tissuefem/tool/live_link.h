@@ -78,14 +78,18 @@ namespace tissuefem::tool
     /// port number to @p port_file (complete, then renamed into place) so
     /// that a client can find it; starts the communication thread on
     /// process 0. @p period is the device's period (1 / 'Haptic rate'),
-    /// against which answer latencies are reported. Throws InputError if
-    /// it cannot listen.
+    /// against which answer latencies are reported. With
+    /// @p reserve_core, process 0 simulates with one thread fewer while
+    /// the link lives, if it would otherwise use every core, so that the
+    /// communication thread answers without waiting for a core. Throws
+    /// InputError if it cannot listen.
     LiveLink(int                port,
              double             timeout,
              unsigned int       dim,
              double             period,
              const Limits      &limits,
-             const std::string &port_file);
+             const std::string &port_file,
+             bool               reserve_core = true);
     ~LiveLink();
 
     /// Blocks until at least one position arrived (accepting the client
@@ -142,7 +146,9 @@ namespace tissuefem::tool
     bool
     send_line(const std::string &line);
 
-    double       timeout;
+    double timeout;
+    /// The thread limit to restore when the link ends (0: unchanged).
+    unsigned int restored_threads = 0;
     unsigned int dim;
     double       period;
     Limits       limits;
