@@ -207,6 +207,7 @@ int
 main(int argc, char **argv)
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  const tissuefem_tests::OneWriter one_writer;
   check<2>("Q2, 2D", scene(2, "hypercube", 2));
   check<2>("P1, 2D", scene(2, "simplex", 1));
   check<3>("Q1, 3D", scene(3, "hypercube", 1));

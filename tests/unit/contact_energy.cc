@@ -149,6 +149,7 @@ int
 main(int argc, char **argv)
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  const tissuefem_tests::OneWriter one_writer;
   const Outcome                    implicit = run("backward Euler", 0.005);
   check_bounce(implicit, "backward Euler");
   check_small(std::max(implicit.worst_rise, 0.),
