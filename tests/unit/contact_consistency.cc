@@ -205,7 +205,7 @@ namespace
             std::string message;
             for (const auto i : shifted.locally_owned_elements())
               shifted[i] -= 0.006;
-            shifted.compress(VectorOperation::insert);
+            shifted.compress(VectorOperation::add);
             // The step starts there: the floor's stick points.
             solid.begin_step(shifted, t);
             tissuefem_tests::check(solid.augment(shifted, t, 0, message)
