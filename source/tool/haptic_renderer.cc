@@ -73,7 +73,8 @@ namespace tissuefem::tool
       "(when it would use them all). Measured on Jeffrey's muscle palpated "
       "live on two cores (doc/studies.md): the 99th percentile of the "
       "latency the client sees 1.3-1.6 ms with both cores simulating, "
-      "0.27 ms with one left to the answers, for steps 10 % longer.");
+      "0.19-0.27 ms with one left to the answers, the step median unchanged "
+      "(one thread fewer made the palpation's steps at most 10 % longer).");
     prm.declare_entry("Haptic budget",
                       "0.002",
                       Patterns::Double(),

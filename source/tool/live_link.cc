@@ -85,9 +85,13 @@ namespace tissuefem::tool
     // On two cores with both simulating, the client saw answers 1.3-1.6 ms
     // late at the 99th percentile (the thread waited for a core); with one
     // core left to it, 0.27 ms (doc/studies.md).
+    // Every core is taken when the processes' threads fill the node (the
+    // processes are taken to share one).
     const unsigned int threads = MultithreadInfo::n_threads();
+    const unsigned int processes
+      = Utilities::MPI::n_mpi_processes(parallel_tools::communicator());
     if (reserve_core && parallel_tools::is_root() && threads > 1
-        && threads >= MultithreadInfo::n_cores())
+        && threads * processes >= MultithreadInfo::n_cores())
       {
         restored_threads = threads;
         MultithreadInfo::set_thread_limit(threads - 1);

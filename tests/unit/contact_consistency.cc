@@ -176,7 +176,9 @@ namespace
         solid.initialize_vector(u);
         solid.initialize_vector(u_tilde);
         solid.initialize_vector(d);
-        // Random values per global index, whatever the processes.
+        // Random values drawn per global index, so that each process
+        // draws its own entries (the numbering, and so the field, differs
+        // between one and two processes; every check holds for any field).
         for (const auto i : u.locally_owned_elements())
           {
             tissuefem_tests::Random random(20261126 + 7919 * i);

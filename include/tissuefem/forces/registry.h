@@ -22,6 +22,9 @@ namespace tissuefem::forces
    * contribution), its materials, and the integrator the file chose, so
    * that a contribution refuses an integrator that cannot honour it itself
    * (refuse_unless()) instead of the scene knowing every contribution.
+   * Only the discretization outlives create(): the other members refer to
+   * the scene constructor's locals, so a contribution copies what it
+   * keeps of them.
    */
   template <int dim>
   struct SceneData
