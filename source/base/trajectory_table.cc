@@ -17,7 +17,8 @@ namespace tissuefem
   template <int dim>
   TrajectoryTable<dim>
   TrajectoryTable<dim>::read(const std::string &file,
-                             const std::string &parameter)
+                             const std::string &parameter,
+                             const unsigned int rotations)
   {
     std::ifstream in(file);
     require(static_cast<bool>(in), parameter, "cannot open '" + file + "'");
@@ -48,16 +49,40 @@ namespace tissuefem
               continue;
             throw InputError(where + "not a row of finite numbers");
           }
-        if (row.size() != dim + 1)
-          throw InputError(where + "expected " + std::to_string(dim + 1)
-                           + " values (t and the coordinates), got "
-                           + std::to_string(row.size()));
+        // The first row says whether the rows carry rotations.
+        const bool        first = table.empty();
+        const std::size_t plain = dim + 1, posed = dim + 1 + rotations;
+        const bool        fits
+          = first
+              ? row.size() == plain || (rotations > 0 && row.size() == posed)
+              : row.size() == (table.has_rotation() ? posed : plain);
+        if (!fits)
+          {
+            std::string expected
+              = first || !table.has_rotation()
+                  ? std::to_string(plain) + " values (t and the coordinates)"
+                  : std::to_string(posed)
+                      + " values (t, the coordinates and the rotation, as on "
+                        "the first row)";
+            if (first && rotations > 0)
+              expected += " or " + std::to_string(posed)
+                          + " (t, the coordinates and the rotation)";
+            throw InputError(where + "expected " + expected + ", got "
+                             + std::to_string(row.size()));
+          }
         if (!table.empty() && !(row[0] > table.times.back()))
           throw InputError(where + "times must increase");
         Tensor<1, dim> position;
         for (unsigned int d = 0; d < dim; ++d)
           position[d] = row[d + 1];
         table.append(row[0], position);
+        if (row.size() > dim + 1)
+          {
+            std::array<double, 3> angle{{0, 0, 0}};
+            for (unsigned int r = 0; r < rotations; ++r)
+              angle[r] = row[dim + 1 + r];
+            table.angles.push_back(angle);
+          }
       }
     require(!table.empty(), parameter, "'" + file + "' holds no positions");
     return table;
@@ -86,19 +111,53 @@ namespace tissuefem
 
 
   template <int dim>
+  void
+  TrajectoryTable<dim>::locate(const double time,
+                               std::size_t &a,
+                               std::size_t &b,
+                               double      &s) const
+  {
+    const auto after = std::upper_bound(times.begin(), times.end(), time);
+    s                = 0;
+    if (after == times.begin())
+      a = b = 0;
+    else if (after == times.end())
+      a = b = times.size() - 1;
+    else
+      {
+        b = after - times.begin();
+        a = b - 1;
+        s = (time - times[a]) / (times[b] - times[a]);
+      }
+  }
+
+
+  template <int dim>
   Tensor<1, dim>
   TrajectoryTable<dim>::position(const double time) const
   {
     if (times.empty())
       return {};
-    const auto after = std::upper_bound(times.begin(), times.end(), time);
-    if (after == times.begin())
-      return positions.front();
-    if (after == times.end())
-      return positions.back();
-    const std::size_t b = after - times.begin(), a = b - 1;
-    const double      s = (time - times[a]) / (times[b] - times[a]);
+    std::size_t a, b;
+    double      s;
+    locate(time, a, b, s);
     return (1 - s) * positions[a] + s * positions[b];
+  }
+
+
+  template <int dim>
+  std::array<double, 3>
+  TrajectoryTable<dim>::rotation(const double time) const
+  {
+    std::array<double, 3> result{{0, 0, 0}};
+    if (angles.empty())
+      return result;
+    std::size_t a, b;
+    double      s;
+    locate(time, a, b, s);
+    for (unsigned int r = 0; r < 3; ++r)
+      result[r] = (1 - s) * angles[a][r] + s * angles[b][r];
+    return result;
   }
 
 

@@ -40,15 +40,38 @@ namespace tissuefem::contact
           "rigidly: "
           "contact pushes the tissue, never the obstacle.");
         prm.declare_entry(
+          "Rotation",
+          "0",
+          Patterns::Anything(),
+          "Rotation of the shape about 'Rotation centre' (radians), "
+          "expressions of t (time units): in 2D one angle, "
+          "counter-clockwise; in 3D a rotation vector, three expressions "
+          "separated by ';' (the axis times the angle, turning right-handed "
+          "about the axis); ignored in 1D. A point y of the shape (where "
+          "its parameters put it) goes to c + m + R (y - c), c the centre, "
+          "R the rotation and m 'Motion': a pivoting instrument, a tilting "
+          "table. Friction's stick points turn with the shape. A live "
+          "device moves the translation; the rotation stays this one.");
+        prm.declare_entry("Rotation centre",
+                          "0, 0, 0",
+                          Patterns::Anything(),
+                          "The point of the shape's frame about which "
+                          "'Rotation' turns it (length units; the first dim "
+                          "coordinates are used): a trocar's pivot, a "
+                          "hinge.");
+        prm.declare_entry(
           "Motion file",
           "",
           Patterns::Anything(),
-          "A CSV file of the shape's translation against time, recorded "
-          "from a device or written by hand: rows 't, x, y[, z]' (time and "
-          "length units), times increasing, a first line that is not "
-          "numeric a header; interpolated linearly and held beyond the "
-          "ends. A relative path is taken relative to the parameter file's "
-          "directory. Replaces 'Motion' when set.");
+          "A CSV file of the shape's poses against time, recorded from a "
+          "device or written by hand: rows 't, x, y[, z]' (time and length "
+          "units, the translation) or, with the rotation (radians, as "
+          "'Rotation' gives it), 't, x, y, angle' in 2D and 't, x, y, z, "
+          "rx, ry, rz' in 3D, every row as wide as the first; times "
+          "increasing, a first line that is not numeric a header; "
+          "interpolated linearly and held beyond the ends. A relative path "
+          "is taken relative to the parameter file's directory. Replaces "
+          "'Motion' when set, and 'Rotation' when its rows carry one.");
         prm.declare_entry(
           "Friction coefficient",
           "0",
@@ -91,8 +114,10 @@ namespace tissuefem::contact
               require(other.name != obstacle.name,
                       "Contact/" + slot + "/Name",
                       "'" + obstacle.name + "' names two obstacles");
-            obstacle.moves = names_variable(prm.get("Motion"), "t");
-            obstacle.own_motion_names_t = obstacle.moves;
+            obstacle.own_motion_names_t
+              = names_variable(prm.get("Motion"), "t");
+            obstacle.moves = obstacle.own_motion_names_t;
+            obstacle.read_rotation(prm, slot);
             if (std::string file = Utilities::trim(prm.get("Motion file"));
                 !file.empty())
               {
@@ -101,9 +126,11 @@ namespace tissuefem::contact
                   file = (std::filesystem::path(directory) / file).string();
                 obstacle.recorded = std::make_shared<TrajectoryTable<dim>>(
                   TrajectoryTable<dim>::read(file,
-                                             "Contact/" + slot
-                                               + "/Motion file"));
+                                             "Contact/" + slot + "/Motion file",
+                                             rotation_components(dim)));
                 obstacle.moves = true;
+                if (obstacle.recorded->has_rotation())
+                  obstacle.rotating = true;
               }
             obstacle.friction = prm.get_double("Friction coefficient");
             obstacle.motion
@@ -132,17 +159,55 @@ namespace tissuefem::contact
 
 
   template <int dim>
-  Tensor<1, dim>
-  Obstacle<dim>::offset(const double time) const
+  void
+  Obstacle<dim>::read_rotation(ParameterHandler &prm, const std::string &slot)
   {
+    const std::string where = "Contact/" + slot + "/";
+    pivot
+      = parse_point<dim>(leading_entries(prm.get("Rotation centre"), ',', dim),
+                         where + "Rotation centre");
+    constexpr unsigned int n = rotation_components(dim);
+    if (n == 0)
+      return;
+    const std::string text = leading_entries(prm.get("Rotation"), ';', n);
+    rotation               = make_function<dim>(text, n, where + "Rotation");
+    moves                  = moves || names_variable(text, "t");
+    rotating               = names_variable(text, "t");
+    rotation->set_time(0);
+    for (unsigned int r = 0; r < n; ++r)
+      rotating = rotating || rotation->value(Point<dim>(), r) != 0;
+  }
+
+
+  template <int dim>
+  Pose<dim>
+  Obstacle<dim>::pose(const double time) const
+  {
+    Pose<dim> result;
+    result.pivot = pivot;
     if (follower)
-      return follower(time);
-    if (recorded)
-      return recorded->position(time);
-    motion->set_time(time);
-    Tensor<1, dim> result;
-    for (unsigned int d = 0; d < dim; ++d)
-      result[d] = motion->value(Point<dim>(), d);
+      result.translation = follower(time);
+    else if (recorded)
+      result.translation = recorded->position(time);
+    else
+      {
+        motion->set_time(time);
+        for (unsigned int d = 0; d < dim; ++d)
+          result.translation[d] = motion->value(Point<dim>(), d);
+      }
+    if (!rotating)
+      return result;
+    std::array<double, 3> angles{{0, 0, 0}};
+    if (recorded && recorded->has_rotation())
+      angles = recorded->rotation(time);
+    else
+      {
+        rotation->set_time(time);
+        for (unsigned int r = 0; r < rotation_components(dim); ++r)
+          angles[r] = rotation->value(Point<dim>(), r);
+      }
+    result.rotation = rotation_matrix<dim>(angles);
+    result.rotates  = angles[0] != 0 || angles[1] != 0 || angles[2] != 0;
     return result;
   }
 

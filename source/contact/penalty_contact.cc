@@ -71,8 +71,15 @@ namespace tissuefem::contact
   Coulomb<dim>
   PenaltyContact<dim>::friction(const Point_ &p) const
   {
-    return Coulomb<dim>(
-      p.y, *p.anchor, p.gap.normal, tangential * p.k, p.bound, p.tau);
+    // The slip and tau are kept in the obstacle's frame, so that a stuck
+    // point's stick point turns with a rotating obstacle; the law takes
+    // them in the world's (only y - a enters it).
+    return Coulomb<dim>(Point<dim>(p.pose->world_vector(p.y - *p.anchor)),
+                        Point<dim>(),
+                        p.gap.normal,
+                        tangential * p.k,
+                        p.bound,
+                        p.pose->world_vector(p.tau));
   }
 
 
@@ -97,9 +104,9 @@ namespace tissuefem::contact
   {
     if (obstacle_list.empty())
       return;
-    std::vector<Tensor<1, dim>> offsets;
+    std::vector<Pose<dim>> poses;
     for (const auto &obstacle : obstacle_list)
-      offsets.push_back(obstacle.offset(time));
+      poses.push_back(obstacle.pose(time));
     std::vector<Point<dim>> x;
     std::vector<Point_>     points;
     const std::uint64_t     n_obs = obstacle_list.size();
@@ -133,7 +140,11 @@ namespace tissuefem::contact
             double most = 0;
             for (unsigned int o = 0; o < n_obs; ++o)
               {
-                moved[o] = (offsets[o] - kept.offsets[o]).norm();
+                // How far a point of the obstacle near a face has moved.
+                const double shift
+                  = (poses[o].translation - kept.poses[o].translation).norm();
+                moved[o] = poses[o].separation(kept.poses[o],
+                                               kept.reach[o] + shift + motion);
                 most     = std::max(most, moved[o]);
               }
             skip    = motion + most <= kept.limit;
@@ -145,7 +156,8 @@ namespace tissuefem::contact
     if (measure)
       {
         boundary.values_of(u, kept.reference);
-        kept.offsets    = offsets;
+        kept.poses = poses;
+        kept.reach.assign(n_obs, 0.);
         kept.generation = boundary.generation();
         kept.clearance.assign(faces.size() * n_obs,
                               -std::numeric_limits<double>::infinity());
@@ -181,9 +193,15 @@ namespace tissuefem::contact
         for (unsigned int o = 0; o < n_obs; ++o)
           {
             const double clearance
-              = obstacle_list[o].distance(centre, offsets[o]) - radius;
+              = obstacle_list[o].distance(centre, poses[o]) - radius;
             if (measure)
-              kept.clearance[i * n_obs + o] = clearance;
+              {
+                kept.clearance[i * n_obs + o] = clearance;
+                kept.reach[o]                 = std::max(
+                  kept.reach[o],
+                  (centre - poses[o].pivot - poses[o].translation).norm()
+                    + radius);
+              }
             near[o] = every || obstacle_list[o].friction > 0
                       || !(clearance * k > largest_multiplier);
             any = any || near[o];
@@ -196,8 +214,7 @@ namespace tissuefem::contact
               if (!near[o])
                 continue;
               // The distance first: most points touch nothing.
-              const double distance
-                = obstacle_list[o].distance(x[q], offsets[o]);
+              const double distance = obstacle_list[o].distance(x[q], poses[o]);
               const std::uint64_t key   = (f.key + q) * n_obs + o;
               const State        *state = nullptr;
               if (!states.empty())
@@ -217,7 +234,7 @@ namespace tissuefem::contact
               const bool active = !(lambda - k * distance < 0);
               if (!active && !every && !(bound > 0))
                 continue;
-              const Gap<dim>    gap    = obstacle_list[o].gap(x[q], offsets[o]);
+              const Gap<dim>    gap    = obstacle_list[o].gap(x[q], poses[o]);
               const Point<dim> *anchor = nullptr;
               if (obstacle_list[o].friction > 0)
                 {
@@ -235,7 +252,8 @@ namespace tissuefem::contact
                                 key,
                                 std::max(0., lambda - k * gap.distance),
                                 active,
-                                x[q] - offsets[o],
+                                poses[o].local(x[q]),
+                                &poses[o],
                                 anchor,
                                 bound,
                                 state ? state->tau : Tensor<1, dim>()});
@@ -401,13 +419,13 @@ namespace tissuefem::contact
     gap.reinit(triangulation.n_active_cells());
     if (obstacle_list.empty())
       return;
-    std::vector<Tensor<1, dim>> offsets;
+    std::vector<Pose<dim>> poses;
     for (const auto &obstacle : obstacle_list)
-      offsets.push_back(obstacle.offset(time));
+      poses.push_back(obstacle.pose(time));
     const auto nearest = [&](const Point<dim> &x) {
       double g = std::numeric_limits<double>::infinity();
       for (unsigned int o = 0; o < obstacle_list.size(); ++o)
-        g = std::min(g, obstacle_list[o].distance(x, offsets[o]));
+        g = std::min(g, obstacle_list[o].distance(x, poses[o]));
       return g;
     };
     // Centres, moved by the mean of their vertices' displacements.
@@ -433,7 +451,7 @@ namespace tissuefem::contact
         for (unsigned int q = 0; q < x.size(); ++q)
           for (unsigned int o = 0; o < obstacle_list.size(); ++o)
             {
-              const double g      = obstacle_list[o].distance(x[q], offsets[o]);
+              const double g      = obstacle_list[o].distance(x[q], poses[o]);
               double       lambda = 0;
               if (const auto s = states.find((f.key + q) * n_obs + o);
                   s != states.end())

@@ -83,8 +83,9 @@ namespace tissuefem::contact
                   const Tensor<1, dim> t = friction(p).traction;
                   worst
                     = max_keeping_nan(worst,
-                                      (t - p.tau).norm() / (tangential * p.k));
-                  state.tau = t;
+                                      (t - p.pose->world_vector(p.tau)).norm()
+                                        / (tangential * p.k));
+                  state.tau = p.pose->local_vector(t);
                 }
               updated.emplace(p.key, state);
             }
@@ -222,7 +223,8 @@ namespace tissuefem::contact
                 // point: t = -k_t (y - a) along the tangent plane.
                 state.anchor = p.y;
                 if (!augmented)
-                  state.anchor += law.traction / (tangential * p.k);
+                  state.anchor
+                    += p.pose->local_vector(law.traction) / (tangential * p.k);
               }
             moved.emplace_back(p.key, state);
           }

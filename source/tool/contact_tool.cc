@@ -93,7 +93,7 @@ namespace tissuefem::tool
   ContactTool<dim>::displacement(const double time) const
   {
     const auto &obstacle = contact->obstacles()[index];
-    return obstacle.offset(time) - obstacle.offset(0.);
+    return obstacle.pose(time).translation - obstacle.pose(0.).translation;
   }
 
 

@@ -58,6 +58,8 @@ namespace
         set Shape  = sphere
         set Name   = probe
         set Motion = 0.1 * t; -0.2 * t; 0
+        set Rotation = 0.3 * t; 0.2 * t; -0.4 * t
+        set Rotation centre = 0.5, 1, 0.2
         subsection sphere
           set Centre = 0.9, 1.35, 0.5
           set Radius = 0.5
@@ -66,6 +68,8 @@ namespace
       subsection Obstacle 3
         set Shape = half-space
         set Name  = floor
+        set Rotation = 0.05 * t; -0.1 * t; 0.08 * t
+        set Rotation centre = 0.5, 0.1, 0.5
         subsection half-space
           set Point  = 0, 0.1, 0
           set Normal = 0.2, 1, 0.1

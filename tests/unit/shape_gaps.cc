@@ -89,7 +89,7 @@ namespace
   {
     const std::string D = std::to_string(dim) + "D: ";
     const auto        g = [&](const unsigned int o, const Point<dim> &y) {
-      return obstacles[o].gap(y, Tensor<1, dim>()).distance;
+      return obstacles[o].gap(y, contact::Pose<dim>()).distance;
     };
     const double s2 = std::sqrt(2.), s3 = std::sqrt(3.);
     // Capsule: beside the shaft, beyond the tip (diagonally), on the axis.
@@ -146,7 +146,7 @@ namespace
     for (unsigned int o = 0; o < obstacles.size(); ++o)
       {
         const auto gap = [&](const Point<dim> &y) {
-          return obstacles[o].gap(y, Tensor<1, dim>());
+          return obstacles[o].gap(y, contact::Pose<dim>());
         };
         double unit = 0, gradient = 0, curvature = 0, foot = 0, foot_normal = 0,
                alone = 0;
@@ -157,10 +157,9 @@ namespace
               y[d] += 2 * random.uniform();
             const auto g = gap(y);
             tissuefem_tests::raise(unit, std::abs(g.normal.norm() - 1));
-            tissuefem_tests::raise(alone,
-                                   std::abs(
-                                     obstacles[o].distance(y, Tensor<1, dim>())
-                                     - g.distance));
+            tissuefem_tests::raise(
+              alone,
+              std::abs(obstacles[o].distance(y, contact::Pose<dim>()) - g.distance));
             for (unsigned int d = 0; d < dim; ++d)
               {
                 Point<dim> plus = y, minus = y;

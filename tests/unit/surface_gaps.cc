@@ -154,7 +154,7 @@ namespace
     const std::string              box = text.str();
     const std::vector<std::string> files
       = {"box_ascii.stl", "box_binary.stl", "box.obj", "box_inward.stl"};
-    const Tensor<1, 3> zero;
+    const contact::Pose<3> zero;
     for (const std::string &file : files)
       {
         ParameterHandler prm;

@@ -4,6 +4,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <tissuefem/base/trajectory_table.h>
+#include <tissuefem/contact/pose.h>
 #include <tissuefem/contact/shape.h>
 
 #include <functional>
@@ -14,8 +15,11 @@
 namespace tissuefem::contact
 {
   /**
-   * A rigid obstacle of the scene: a named shape (shape.h) translated by a
-   * motion given as expressions of t. Declared in 'Contact/Obstacle k',
+   * A rigid obstacle of the scene: a named shape (shape.h) moved rigidly by
+   * a pose (pose.h) against time: a translation and a rotation about a
+   * centre, each given as expressions of t or read together from a file of
+   * poses, the translation possibly a live device's. Declared in
+   * 'Contact/Obstacle k',
    * k = 1..max_obstacles, each with its own 'Shape' (none by default), so
    * that a scene has as many obstacles as it fills in.
    */
@@ -33,27 +37,28 @@ namespace tissuefem::contact
     static std::vector<Obstacle<dim>>
     create_all(ParameterHandler &prm, const std::string &directory = "");
 
-    /// The shape's translation at @p time (length units).
-    Tensor<1, dim>
-    offset(const double time) const;
+    /// Where the shape is at @p time.
+    Pose<dim>
+    pose(const double time) const;
 
-    /// The gap of the point @p x with the shape translated by @p offset
-    /// (shape.h).
+    /// The gap of the point @p x with the shape at @p pose (shape.h), in
+    /// the world's frame.
     Gap<dim>
-    gap(const Point<dim> &x, const Tensor<1, dim> &offset) const
+    gap(const Point<dim> &x, const Pose<dim> &pose) const
     {
-      return shape->gap(x - offset);
+      return pose.world_gap(shape->gap(pose.local(x)));
     }
 
     /// Its signed distance alone (Shape::distance()).
     double
-    distance(const Point<dim> &x, const Tensor<1, dim> &offset) const
+    distance(const Point<dim> &x, const Pose<dim> &pose) const
     {
-      return shape->distance(x - offset);
+      return shape->distance(pose.local(x));
     }
 
     /// Makes the shape follow @p motion (a translation against time, length
-    /// units; a live device's) instead of its parameters' motion.
+    /// units; a live device's) instead of its parameters' translation (its
+    /// rotation stays the parameters').
     void
     follow(std::function<Tensor<1, dim>(const double)> motion)
     {
@@ -61,12 +66,20 @@ namespace tissuefem::contact
       moves    = true;
     }
 
-    /// Whether its parameters give it a motion ('Motion' names t or a
-    /// 'Motion file' is set).
+    /// Whether its parameters give it a translation ('Motion' names t or
+    /// a 'Motion file' is set).
     bool
     has_own_motion() const
     {
       return recorded || own_motion_names_t;
+    }
+
+    /// Whether it may rotate ('Rotation' is not 0, or the motion file
+    /// carries rotations).
+    bool
+    may_rotate() const
+    {
+      return rotating;
     }
 
     /// The name it carries in every output.
@@ -79,13 +92,22 @@ namespace tissuefem::contact
     /// (dimensionless; 0: frictionless).
     double friction = 0;
 
-    /// Whether its motion names t.
+    /// Whether its pose changes with time.
     bool moves = false;
 
   private:
+    /// Reads 'Rotation' and 'Rotation centre' of the slot @p slot.
+    void
+    read_rotation(ParameterHandler &prm, const std::string &slot);
+
     std::shared_ptr<const Shape<dim>>    shape;
     std::shared_ptr<FunctionParser<dim>> motion;
-    /// 'Motion file' (null: 'Motion').
+    /// 'Rotation' (null in 1D).
+    std::shared_ptr<FunctionParser<dim>> rotation;
+    /// 'Rotation centre', in the shape's frame.
+    Point<dim> pivot;
+    bool       rotating = false;
+    /// 'Motion file' (null: 'Motion' and 'Rotation').
     std::shared_ptr<const TrajectoryTable<dim>> recorded;
     /// A motion set by follow() (empty: the parameters').
     std::function<Tensor<1, dim>(const double)> follower;

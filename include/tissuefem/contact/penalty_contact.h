@@ -184,6 +184,12 @@ namespace tissuefem::contact
     std::vector<Report>
     report(const VectorType &u, const double time) const;
 
+    /// Refuses (InputError naming the obstacle's slot) an obstacle that
+    /// starts deeper inside the tissue, at the ghosted @p u and @p time,
+    /// than 'Contact/Start penetration tolerance'.
+    void
+    check_start(const VectorType &u, const double time) const;
+
     /**
      * Per active cell of this process (indexed by active cell index), for
      * the ghosted @p u at @p time: @p pressure, the largest contact
@@ -193,12 +199,6 @@ namespace tissuefem::contact
      * centre (moved by the mean displacement of its vertices). For the VTU
      * output.
      */
-    /// Refuses (InputError naming the obstacle's slot) an obstacle that
-    /// starts deeper inside the tissue, at the ghosted @p u and @p time,
-    /// than 'Contact/Start penetration tolerance'.
-    void
-    check_start(const VectorType &u, const double time) const;
-
     void
     cell_fields(const VectorType &u,
                 const double      time,
@@ -232,10 +232,10 @@ namespace tissuefem::contact
     /// reference area weight dA, point index q of the face, its key in
     /// the contact states, its pressure p = max(0, lambda - k g), whether
     /// it is active (lambda - k g >= 0), its position y in the obstacle's
-    /// frame, and with friction its stick
-    /// point (null: none), friction bound (mu lambda, or the penalty's
-    /// mu p of the last solve) and tangential
-    /// multiplier tau.
+    /// frame, the obstacle's pose (valid in for_each_face()'s callback),
+    /// and with friction its stick point (null: none, obstacle's frame),
+    /// friction bound (mu lambda, or the penalty's mu p of the last solve)
+    /// and tangential multiplier tau (obstacle's frame).
     struct Point_
     {
       unsigned int      obstacle;
@@ -247,6 +247,7 @@ namespace tissuefem::contact
       double            pressure;
       bool              active;
       Point<dim>        y;
+      const Pose<dim>  *pose;
       const Point<dim> *anchor;
       double            bound;
       Tensor<1, dim>    tau;
@@ -324,19 +325,23 @@ namespace tissuefem::contact
      * What for_each_face() keeps between calls to skip faces far from
      * every obstacle without computing where they are: each face's
      * clearance g(c) - r to each obstacle when last measured, at the
-     * faces' displacement values and the obstacles' offsets of then. A
+     * faces' displacement values and the obstacles' poses of then. A
      * face has moved by at most BoundaryPoints::motion_bound() since, an
-     * obstacle by the change of its offset (they translate), and the
-     * distance is 1-Lipschitz: so where the clearance minus both still
-     * exceeds the largest multiplier over k, no point of the face can act.
+     * obstacle's points near it by at most Pose::separation() over the
+     * faces' reach from its pivot, and the distance is 1-Lipschitz: so
+     * where the clearance minus both still exceeds the largest multiplier
+     * over k, no point of the face can act.
      * Measured anew once the motions exceed a quarter of the faces' mean
      * diameter, or the faces change.
      */
     struct Clearances
     {
-      unsigned int                generation = 0;
-      std::vector<double>         reference;
-      std::vector<Tensor<1, dim>> offsets;
+      unsigned int           generation = 0;
+      std::vector<double>    reference;
+      std::vector<Pose<dim>> poses;
+      /// Per obstacle, the largest distance of a face's point from its
+      /// pivot (length units).
+      std::vector<double> reach;
       /// Per face and obstacle (length units; -infinity: not measured).
       std::vector<double> clearance;
       /// The motion up to which they serve (length units).
