@@ -42,7 +42,11 @@ namespace tissuefem::contact
       "(length units): its penetration, or its distance from the obstacle "
       "where it is pressed. With friction, also the largest change of a "
       "stuck point's slip between the last two solves of a step. 0 takes "
-      "1e-4 times the body's diameter.");
+      "1e-4 times the body's diameter. Keep it above 'Newton solver/"
+      "Displacement tolerance' times the diameter: Newton stops each solve "
+      "within that, and smaller gaps and slips are then round-off that the "
+      "updates cannot settle (a block on a turntable with friction: 1e-9 "
+      "on a body of size 1 failed every step, 1e-8 ran).");
     prm.declare_entry(
       "Maximum multiplier updates",
       "50",

@@ -291,6 +291,18 @@ namespace tissuefem::solvers
       bool
       line_search(double &alpha);
 
+      /// Newton's update tests: whether the full step @p du is within
+      /// 'Update tolerance' or moves no node by more than 'Displacement
+      /// tolerance' times the body's size.
+      bool
+      ends_newton(const VectorType &du) const
+      {
+        return checked_l2_norm(du)
+                 <= parameters.update_tolerance * (1 + checked_l2_norm(u))
+               || du.linfty_norm()
+                    <= parameters.displacement_tolerance * length_scale;
+      }
+
       bool
       energy_line_search(const double slope, double &alpha);
 
@@ -384,14 +396,14 @@ namespace tissuefem::solvers
     bool
     NewtonIteration::line_search(double &alpha)
     {
-      // An update within the update tolerance is round-off: neither the
-      // energy's nor the residual's change along it can be told from noise
+      // An update that ends Newton when taken whole (take_step()'s update
+      // tests) is taken whole: the line search could only shorten it, on
+      // changes of the energy or the residual that are round-off by then
       // (a block held by stiff contact penalties and friction springs sat
-      // at |R| = 1.3e-10 with updates of 1e-16, the line search cutting
-      // them to 0.01 until Newton gave up), and its full step ends Newton
-      // in take_step().
-      if (checked_l2_norm(update)
-          <= parameters.update_tolerance * (1 + checked_l2_norm(u)))
+      // at |R| = 1.3e-10, below what round-off lets the penalties reach,
+      // with updates of 1e-16 that the line search cut to 0.01 until
+      // Newton gave up).
+      if (ends_newton(update))
         {
           trial = u;
           trial.add(1., update);
@@ -411,7 +423,13 @@ namespace tissuefem::solvers
         }
       const double slope
         = use_energy && std::isfinite(current_energy) ? residual * update : 0.;
-      if (slope < 0)
+      // Where even the full step's first-order decrease lies within the
+      // energy's round-off (as energy_line_search() allows it), the energy
+      // cannot judge a step length, but the residual norm can: a block
+      // resting on a floor with friction (augmented Lagrangian) sat at
+      // |R| = 3.1e-7 with updates of 1.2e-12, a first-order decrease of
+      // 4e-19, every step length refused until Newton gave up.
+      if (slope < 0 && -slope > 1e-11 * std::abs(current_energy))
         return energy_line_search(slope, alpha);
       return residual_line_search(alpha);
     }
@@ -584,11 +602,7 @@ namespace tissuefem::solvers
                   << ", |du| = " << checked_l2_norm(update) << ", step "
                   << alpha << std::endl;
 
-      if (alpha == 1
-          && (checked_l2_norm(update)
-                <= parameters.update_tolerance * (1 + checked_l2_norm(u))
-              || update.linfty_norm()
-                   <= parameters.displacement_tolerance * length_scale))
+      if (alpha == 1 && ends_newton(update))
         {
           result.converged = std::isfinite(norm);
           return true;
