@@ -8,6 +8,7 @@
 #include <tissuefem/base/parallel.h>
 #include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/boundary/boundary_conditions.h>
+#include <tissuefem/contact/obstacle.h>
 #include <tissuefem/geometry/geometry.h>
 #include <tissuefem/materials/consistency_check.h>
 #include <tissuefem/materials/material_set.h>
@@ -19,6 +20,7 @@
 #include <tissuefem/time/interface.h>
 
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <optional>
 #include <string>
@@ -54,6 +56,50 @@ namespace tissuefem
     output::OutputParameters::declare_parameters(prm);
     adaptation::MeshRefinementParameters::declare_parameters(prm);
     problems::ProblemRegistry::instance().declare_parameters(prm);
+  }
+
+
+  namespace
+  {
+    /// Raises the 'Contact/Obstacle k' slots to those @p file, the files
+    /// it includes (as read_parameters() finds them: relative to its
+    /// directory) and @p overrides name. An unreadable file is left to
+    /// read_parameters() to report.
+    void
+    name_obstacle_slots(const std::string              &file,
+                        const std::vector<std::string> &overrides,
+                        const unsigned int              depth = 0)
+    {
+      std::ifstream in(file);
+      std::string   line, text;
+      while (in && std::getline(in, line))
+        {
+          text += line + "\n";
+          const std::string trimmed = Utilities::trim(line);
+          if (depth < 8 && trimmed.rfind("include", 0) == 0)
+            {
+              std::filesystem::path included(
+                Utilities::trim(trimmed.substr(7)));
+              if (included.is_relative())
+                included
+                  = std::filesystem::absolute(file).parent_path() / included;
+              name_obstacle_slots(included.string(), {}, depth + 1);
+            }
+        }
+      contact::name_obstacle_slots(text, "Parameter file '" + file + "'");
+      for (const std::string &assignment : overrides)
+        contact::name_obstacle_slots(assignment, "--set '" + assignment + "'");
+    }
+  } // namespace
+
+
+  void
+  declare_parameters_for(ParameterHandler               &prm,
+                         const std::string              &file,
+                         const std::vector<std::string> &overrides)
+  {
+    name_obstacle_slots(file, overrides);
+    declare_all_parameters(prm);
   }
 
 
@@ -305,7 +351,7 @@ namespace tissuefem
         }
 
       ParameterHandler prm;
-      declare_all_parameters(prm);
+      declare_parameters_for(prm, line.file, line.overrides);
       read_parameters(prm, line.file, line.overrides);
       if (line.check_material)
         {

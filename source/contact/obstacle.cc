@@ -2,7 +2,9 @@
 #include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/contact/obstacle.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <regex>
 
 namespace tissuefem::contact
 {
@@ -12,7 +14,7 @@ namespace tissuefem::contact
   {
     const auto &shapes = ShapeRegistry<dim>::instance();
     prm.enter_subsection("Contact");
-    for (unsigned int k = 1; k <= max_obstacles; ++k)
+    for (unsigned int k = 1; k <= obstacle_slots(); ++k)
       {
         prm.enter_subsection("Obstacle " + std::to_string(k));
         prm.declare_entry("Shape",
@@ -95,7 +97,7 @@ namespace tissuefem::contact
   {
     std::vector<Obstacle<dim>> result;
     prm.enter_subsection("Contact");
-    for (unsigned int k = 1; k <= max_obstacles; ++k)
+    for (unsigned int k = 1; k <= obstacle_slots(); ++k)
       {
         const std::string slot = "Obstacle " + std::to_string(k);
         prm.enter_subsection(slot);
@@ -209,6 +211,42 @@ namespace tissuefem::contact
     result.rotation = rotation_matrix<dim>(angles);
     result.rotates  = angles[0] != 0 || angles[1] != 0 || angles[2] != 0;
     return result;
+  }
+
+
+  namespace
+  {
+    unsigned int &
+    slots()
+    {
+      static unsigned int count = max_obstacles;
+      return count;
+    }
+  } // namespace
+
+
+  unsigned int
+  obstacle_slots()
+  {
+    return slots();
+  }
+
+
+  void
+  name_obstacle_slots(const std::string &text, const std::string &where)
+  {
+    static const std::regex slot(R"(Obstacle\s+([0-9]+))");
+    for (auto match = std::sregex_iterator(text.begin(), text.end(), slot);
+         match != std::sregex_iterator();
+         ++match)
+      {
+        const std::string k = (*match)[1];
+        if (k.size() > 3 || std::stoul(k) > largest_obstacle_slot)
+          throw InputError(where + ": 'Obstacle " + k
+                           + "': obstacle slots go up to "
+                           + std::to_string(largest_obstacle_slot));
+        slots() = std::max<unsigned int>(slots(), std::stoul(k));
+      }
   }
 
 

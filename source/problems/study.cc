@@ -191,13 +191,13 @@ namespace tissuefem::problems
       all.push_back(reference_variant());
     for (const auto &v : all)
       {
-        ParameterHandler prm;
-        declare_all_parameters(prm);
+        ParameterHandler         prm;
         std::vector<std::string> overrides;
         for (const auto &s : settings)
           overrides.push_back(s.assignment());
         for (const auto &s : v.settings)
           overrides.push_back(s.assignment());
+        declare_parameters_for(prm, scene, overrides);
         try
           {
             read_parameters(prm, scene, overrides);

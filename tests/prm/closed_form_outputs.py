@@ -194,22 +194,27 @@ contact_floor_bar_1d()
 
 
 def contact_floor_block_2d(name="contact_floor_block_2d", times=(0, 0.5, 1),
-                           weights=(0, 0.5, 1), variants=(".mpirun=2",)):
+                           weights=(0, 0.5, 1), variants=(".mpirun=2",),
+                           floors=("floor",)):
     # Uniaxial stress under the block's weight (nu = 0, frictionless floor,
     # roller on x = 0): each column is the 1D bar of contact_floor_bar_1d
     # with H = 0.5, rho g = 0.1 and k = 100 E / h, h = 0.25 sqrt 2 (the
     # cells' diameter); the floor carries the weight 0.1 * 0.5 * 1 * t.
     # The energy is that of the nodal interpolant (two cells per column).
+    # With n identical floors (the same plane) their penalties add: each
+    # carries 1/n of the weight, the penetration is 1/n of one floor's.
     k = 100 / (0.25 * math.sqrt(2))
+    n = len(floors)
 
     def u(y, t):
-        return -0.05 * t / k - 0.1 * t * (0.5 * y - y * y / 2)
+        return -0.05 * t / (n * k) - 0.1 * t * (0.5 * y - y * y / 2)
     lines = ["cells 8 unknowns 30"]
     for t, w in zip(times, weights):
-        lines.append("t = %s obstacle floor force = 0 %s" % (fmt(t), fmt(0.05 * w)))
-        lines.append("t = %s obstacle floor penetration = %s" % (fmt(t), fmt(0.05 * w / k)))
-        # Uniform over the unit width: the weight.
-        lines.append("t = %s obstacle floor pressure range = %s %s" % (fmt(t), fmt(0.05 * w), fmt(0.05 * w)))
+        for floor in floors:
+            lines.append("t = %s obstacle %s force = 0 %s" % (fmt(t), floor, fmt(0.05 * w / n)))
+            lines.append("t = %s obstacle %s penetration = %s" % (fmt(t), floor, fmt(0.05 * w / (n * k))))
+            # Uniform over the unit width: the weight.
+            lines.append("t = %s obstacle %s pressure range = %s %s" % (fmt(t), floor, fmt(0.05 * w / n), fmt(0.05 * w / n)))
         for p, y in enumerate((0, 0.25, 0.5)):
             lines.append("t = %s probe %d u = 0 %s" % (fmt(t), p, fmt(u(y, w) + 0.0)))
     nodes = [0, 0.25, 0.5]
@@ -225,6 +230,10 @@ contact_floor_block_2d()
 # Released under its full weight at t = 0; at rest at t = 30 (the steps of
 # linearly implicit Euler damp the motion).
 contact_floor_block_2d("contact_floor_block_lie_2d", (0, 30), (0, 1), ())
+# Any number of obstacles: four floors in the slots 2, 5, 9 and 12, beyond
+# the four slots always declared.
+contact_floor_block_2d("contact_many_obstacles_2d", variants=(),
+                       floors=("floor 2", "floor 5", "floor 9", "floor 12"))
 
 
 def contact_patch(name, dim, cells, unknowns, probes, names=None, tool=False):

@@ -20,8 +20,8 @@ namespace tissuefem::contact
    * centre, each given as expressions of t or read together from a file of
    * poses, the translation possibly a live device's. Declared in
    * 'Contact/Obstacle k',
-   * k = 1..max_obstacles, each with its own 'Shape' (none by default), so
-   * that a scene has as many obstacles as it fills in.
+   * k = 1..obstacle_slots(), each with its own 'Shape' (none by default),
+   * so that a scene has as many obstacles as it fills in.
    */
   template <int dim>
   class Obstacle
@@ -114,6 +114,26 @@ namespace tissuefem::contact
     bool                                        own_motion_names_t = false;
   };
 
-  /// Slots 'Obstacle 1' .. 'Obstacle max_obstacles' in 'Contact'.
+  /// Slots 'Obstacle 1' .. 'Obstacle max_obstacles' in 'Contact' are
+  /// always declared (--print-parameters lists them).
   constexpr unsigned int max_obstacles = 4;
+
+  /// The largest k a run may name in 'Obstacle k': a typo's 'Obstacle
+  /// 100000' is refused instead of declared.
+  constexpr unsigned int largest_obstacle_slot = 100;
+
+  /// The slots Obstacle::declare_parameters() declares: max_obstacles, or
+  /// more once name_obstacle_slots() has seen them named.
+  unsigned int
+  obstacle_slots();
+
+  /**
+   * Raises obstacle_slots() to the largest k of 'Obstacle k' in @p text (a
+   * parameter file's text, a --set assignment), so that a run declares
+   * every slot its file names before reading it (ParameterHandler reads
+   * only what was declared). Throws an InputError naming @p where for
+   * k > largest_obstacle_slot.
+   */
+  void
+  name_obstacle_slots(const std::string &text, const std::string &where);
 } // namespace tissuefem::contact
