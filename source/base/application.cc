@@ -23,6 +23,7 @@
 #include <fstream>
 #include <iostream>
 #include <optional>
+#include <regex>
 #include <string>
 #include <vector>
 
@@ -61,34 +62,55 @@ namespace tissuefem
 
   namespace
   {
-    /// Raises the 'Contact/Obstacle k' slots to those @p file, the files
-    /// it includes (as read_parameters() finds them: relative to its
-    /// directory) and @p overrides name. An unreadable file is left to
-    /// read_parameters() to report.
+    /**
+     * Raises the 'Contact/Obstacle k' slots to those named by the
+     * 'subsection Obstacle k' lines of @p file (comments stripped as
+     * ParameterHandler strips them) and of the files it includes (as
+     * read_parameters() finds them: relative to the directory of the file
+     * it reads, @p top), and by the paths of @p overrides. An unreadable
+     * file is left to read_parameters() to report.
+     */
     void
     name_obstacle_slots(const std::string              &file,
                         const std::vector<std::string> &overrides,
+                        std::filesystem::path           top   = {},
                         const unsigned int              depth = 0)
     {
+      static const std::regex subsection(
+        R"(^\s*subsection\s+Obstacle\s+([0-9]+)\s*$)");
+      static const std::regex include(R"(^\s*include\s+(.*\S)\s*$)");
+      static const std::regex path(R"((^|/)\s*Obstacle\s+([0-9]+)\s*(/|$))");
+      if (depth == 0)
+        top = std::filesystem::absolute(file).parent_path();
       std::ifstream in(file);
-      std::string   line, text;
+      std::string   line;
+      std::smatch   match;
       while (in && std::getline(in, line))
         {
-          text += line + "\n";
-          const std::string trimmed = Utilities::trim(line);
-          if (depth < 8 && trimmed.rfind("include", 0) == 0)
+          for (std::size_t i = line.find('#'); i != std::string::npos;
+               i             = line.find('#', i + 1))
+            if (i == 0 || line[i - 1] != '\\')
+              {
+                            line.erase(i);
+                            break;
+              }
+          if (std::regex_match(line, match, subsection))
+            contact::name_obstacle_slot(match[1],
+                                        "Parameter file '" + file + "'");
+          else if (depth < 8 && std::regex_match(line, match, include))
             {
-              std::filesystem::path included(
-                Utilities::trim(trimmed.substr(7)));
+              std::filesystem::path included(match[1].str());
               if (included.is_relative())
-                included
-                  = std::filesystem::absolute(file).parent_path() / included;
-              name_obstacle_slots(included.string(), {}, depth + 1);
+                included = top / included;
+              name_obstacle_slots(included.string(), {}, top, depth + 1);
             }
         }
-      contact::name_obstacle_slots(text, "Parameter file '" + file + "'");
       for (const std::string &assignment : overrides)
-        contact::name_obstacle_slots(assignment, "--set '" + assignment + "'");
+        {
+          const std::string key = assignment.substr(0, assignment.find('='));
+          if (std::regex_search(key, match, path))
+            contact::name_obstacle_slot(match[2], "--set '" + assignment + "'");
+        }
     }
   } // namespace
 

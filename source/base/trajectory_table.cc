@@ -81,7 +81,10 @@ namespace tissuefem
             std::array<double, 3> angle{{0, 0, 0}};
             for (unsigned int r = 0; r < rotations; ++r)
               angle[r] = row[dim + 1 + r];
-            table.angles.push_back(angle);
+            if (table.angles.size() == table.times.size())
+              table.angles.back() = angle;
+            else
+              table.angles.push_back(angle);
           }
       }
     require(!table.empty(), parameter, "'" + file + "' holds no positions");
@@ -98,6 +101,9 @@ namespace tissuefem
       return;
     times.push_back(time);
     positions.push_back(position);
+    // A row appended to rows with rotations keeps the last rotation.
+    if (!angles.empty())
+      angles.push_back(angles.back());
   }
 
 

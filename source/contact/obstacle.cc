@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <regex>
 
 namespace tissuefem::contact
 {
@@ -46,10 +45,11 @@ namespace tissuefem::contact
           "0",
           Patterns::Anything(),
           "Rotation of the shape about 'Rotation centre' (radians), "
-          "expressions of t (time units): in 2D one angle, "
-          "counter-clockwise; in 3D a rotation vector, three expressions "
-          "separated by ';' (the axis times the angle, turning right-handed "
-          "about the axis); ignored in 1D. A point y of the shape (where "
+          "expressions of t (time units): in 2D exactly one, the angle, "
+          "counter-clockwise; in 3D exactly three separated by ';', the "
+          "rotation vector (the axis times the angle, turning right-handed "
+          "about the axis); 0 for none; ignored in 1D. A point y of the shape "
+          "(where "
           "its parameters put it) goes to c + m + R (y - c), c the centre, "
           "R the rotation and m 'Motion': a pivoting instrument, a tilting "
           "table. Friction's stick points turn with the shape. A live "
@@ -68,7 +68,9 @@ namespace tissuefem::contact
           "A CSV file of the shape's poses against time, recorded from a "
           "device or written by hand: rows 't, x, y[, z]' (time and length "
           "units, the translation) or, with the rotation (radians, as "
-          "'Rotation' gives it), 't, x, y, angle' in 2D and 't, x, y, z, "
+          "'Rotation' gives it, unwrapped: interpolated linearly, an angle "
+          "that jumps from pi to -pi turns the long way), 't, x, y, angle' "
+          "in 2D (so a fourth column is an angle there) and 't, x, y, z, "
           "rx, ry, rz' in 3D, every row as wide as the first; times "
           "increasing, a first line that is not numeric a header; "
           "interpolated linearly and held beyond the ends. A relative path "
@@ -97,7 +99,11 @@ namespace tissuefem::contact
   {
     std::vector<Obstacle<dim>> result;
     prm.enter_subsection("Contact");
-    for (unsigned int k = 1; k <= obstacle_slots(); ++k)
+    // The slots @p prm declared (obstacle_slots() may have been raised
+    // since, for another file).
+    for (unsigned int k = 1;
+         prm.subsection_path_exists({"Obstacle " + std::to_string(k)});
+         ++k)
       {
         const std::string slot = "Obstacle " + std::to_string(k);
         prm.enter_subsection(slot);
@@ -171,10 +177,21 @@ namespace tissuefem::contact
     constexpr unsigned int n = rotation_components(dim);
     if (n == 0)
       return;
-    const std::string text = leading_entries(prm.get("Rotation"), ';', n);
-    rotation               = make_function<dim>(text, n, where + "Rotation");
-    moves                  = moves || names_variable(text, "t");
-    rotating               = names_variable(text, "t");
+    // Exactly the rotation's own components: one expression copied to
+    // three would turn about (1, 1, 1), and the first of three kept in 2D
+    // would not be the angle about the plane's normal.
+    const std::string text    = Utilities::trim(prm.get("Rotation"));
+    const auto        entries = Utilities::split_string_list(text, ';');
+    require(entries.size() == n || text == "0",
+            where + "Rotation",
+            n == 1 ? "needs one expression, the angle (radians), in 2D; got "
+                       + std::to_string(entries.size())
+                   : "needs three expressions separated by ';', the rotation "
+                     "vector (radians), in 3D; got "
+                       + std::to_string(entries.size()));
+    rotation = make_function<dim>(text, n, where + "Rotation");
+    moves    = moves || names_variable(text, "t");
+    rotating = names_variable(text, "t");
     rotation->set_time(0);
     for (unsigned int r = 0; r < n; ++r)
       rotating = rotating || rotation->value(Point<dim>(), r) != 0;
@@ -233,20 +250,15 @@ namespace tissuefem::contact
 
 
   void
-  name_obstacle_slots(const std::string &text, const std::string &where)
+  name_obstacle_slot(const std::string &k, const std::string &where)
   {
-    static const std::regex slot(R"(Obstacle\s+([0-9]+))");
-    for (auto match = std::sregex_iterator(text.begin(), text.end(), slot);
-         match != std::sregex_iterator();
-         ++match)
-      {
-        const std::string k = (*match)[1];
-        if (k.size() > 3 || std::stoul(k) > largest_obstacle_slot)
-          throw InputError(where + ": 'Obstacle " + k
-                           + "': obstacle slots go up to "
-                           + std::to_string(largest_obstacle_slot));
-        slots() = std::max<unsigned int>(slots(), std::stoul(k));
-      }
+    const unsigned long slot
+      = k.size() > 6 ? largest_obstacle_slot + 1 : std::stoul(k);
+    if (slot == 0 || slot > largest_obstacle_slot)
+      throw InputError(where + ": 'Obstacle " + k
+                       + "': obstacle slots go from 1 to "
+                       + std::to_string(largest_obstacle_slot));
+    slots() = std::max<unsigned int>(slots(), slot);
   }
 
 

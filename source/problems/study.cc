@@ -197,9 +197,9 @@ namespace tissuefem::problems
           overrides.push_back(s.assignment());
         for (const auto &s : v.settings)
           overrides.push_back(s.assignment());
-        declare_parameters_for(prm, scene, overrides);
         try
           {
+            declare_parameters_for(prm, scene, overrides);
             read_parameters(prm, scene, overrides);
           }
         catch (const InputError &e)

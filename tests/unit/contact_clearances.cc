@@ -8,7 +8,9 @@
 // into contact after a measurement in three ways: the tissue moving by
 // steps small enough for the clearances to be kept (the faces' motion
 // bound), the obstacles translating towards the tissue with the tissue
-// still (their offsets), and both; in 2D and 3D, on P1, Q1 and Q2 cells
+// still (their offsets), both, and the floor turning towards the tissue
+// about a distant pivot (its rotation alone: Pose::separation's term
+// |R - R'| times the faces' reach); in 2D and 3D, on P1, Q1 and Q2 cells
 // (Q2's shape functions take negative values: the bound's factor L), with
 // the penalty and the augmented Lagrangian (multipliers from an earlier
 // state). Also: the share of states at which some obstacle touches, so
@@ -113,11 +115,23 @@ namespace
   check(const std::string &name, const std::string &text)
   {
     for (const bool augmented : {false, true})
-      for (const std::string motion : {"tissue", "obstacles", "both"})
+      for (const std::string motion :
+           {"tissue", "obstacles", "both", "turning floor"})
         {
           ParameterHandler prm;
           declare_all_parameters(prm);
           prm.parse_input_from_string(text);
+          if (motion == "turning floor")
+            // The floor still, turned about a pivot 3 to 5 left of the
+            // tissue: it rises under the tissue by up to 0.3 over the
+            // sequence, through its rotation alone.
+            prm.parse_input_from_string(
+              std::string("subsection Contact\n subsection Obstacle 2\n"
+                          "  set Motion = 0\n  set Rotation = ")
+                + (dim == 3 ? "0; 0; 0.06 * t" : "0.06 * t")
+                + "\n  set Rotation centre = -3, -0.15, 0.5\n end\nend\n",
+              "",
+              true);
           if (augmented)
             prm.parse_input_from_string(
               "subsection Contact\n set Method = augmented Lagrangian\nend\n",
@@ -153,7 +167,7 @@ namespace
           // 0.24 over the sequence.
           for (unsigned int k = 0; k < 60; ++k, ++states)
             {
-              if (motion != "obstacles")
+              if (motion == "tissue" || motion == "both")
                 u.add(2e-3, direction);
               if (motion != "tissue")
                 t += 0.02;

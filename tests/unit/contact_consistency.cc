@@ -58,7 +58,9 @@ namespace
         set Shape  = sphere
         set Name   = probe
         set Motion = 0.1 * t; -0.2 * t; 0
-        set Rotation = 0.3 * t; 0.2 * t; -0.4 * t
+        set Rotation = )"
+           + std::string(dim == 3 ? "0.3 * t; 0.2 * t; -0.4 * t" : "-0.4 * t")
+           + R"(
         set Rotation centre = 0.5, 1, 0.2
         subsection sphere
           set Centre = 0.9, 1.35, 0.5
@@ -68,7 +70,9 @@ namespace
       subsection Obstacle 3
         set Shape = half-space
         set Name  = floor
-        set Rotation = 0.05 * t; -0.1 * t; 0.08 * t
+        set Rotation = )"
+           + std::string(dim == 3 ? "0.05 * t; -0.1 * t; 0.08 * t" : "0.08 * t")
+           + R"(
         set Rotation centre = 0.5, 0.1, 0.5
         subsection half-space
           set Point  = 0, 0.1, 0

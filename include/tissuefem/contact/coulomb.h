@@ -18,8 +18,9 @@ namespace tissuefem::contact
    *
    * with tau the point's tangential multiplier (a traction, updated to t
    * after each converged solve, as the normal multiplier is), s = P (y -
-   * a) the slip of the point's position y from its stick point a (both in
-   * the obstacle's frame; P = I - n (x) n), k the penalty, and proj_b the
+   * a) the slip of the point's position y from its stick point a (all in
+   * the world's frame: PenaltyContact keeps y - a and tau in the
+   * obstacle's and turns them; P = I - n (x) n), k the penalty, and proj_b the
    * projection onto the disc |t| <= b of the friction bound b = mu lambda,
    * held fixed over a solve. Where the updates settle (t = tau), either
    * s = 0 and |t| <= b (stick, exactly, whatever k), or |t| = b with t

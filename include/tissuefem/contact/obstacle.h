@@ -74,13 +74,6 @@ namespace tissuefem::contact
       return recorded || own_motion_names_t;
     }
 
-    /// Whether it may rotate ('Rotation' is not 0, or the motion file
-    /// carries rotations).
-    bool
-    may_rotate() const
-    {
-      return rotating;
-    }
 
     /// The name it carries in every output.
     std::string name;
@@ -123,17 +116,18 @@ namespace tissuefem::contact
   constexpr unsigned int largest_obstacle_slot = 100;
 
   /// The slots Obstacle::declare_parameters() declares: max_obstacles, or
-  /// more once name_obstacle_slots() has seen them named.
+  /// more once name_obstacle_slot() has seen them named. It only rises;
+  /// Obstacle::create_all() reads the slots its handler declared.
   unsigned int
   obstacle_slots();
 
   /**
-   * Raises obstacle_slots() to the largest k of 'Obstacle k' in @p text (a
-   * parameter file's text, a --set assignment), so that a run declares
-   * every slot its file names before reading it (ParameterHandler reads
-   * only what was declared). Throws an InputError naming @p where for
-   * k > largest_obstacle_slot.
+   * Raises obstacle_slots() to @p k (the digits of 'Obstacle k' in a
+   * parameter file's 'subsection' line or a --set path), so that a run
+   * declares every slot its file names before reading it
+   * (ParameterHandler reads only what was declared). Throws an InputError
+   * naming @p where for k = 0 or k > largest_obstacle_slot.
    */
   void
-  name_obstacle_slots(const std::string &text, const std::string &where);
+  name_obstacle_slot(const std::string &k, const std::string &where);
 } // namespace tissuefem::contact
