@@ -1,25 +1,23 @@
-// Contact's clearances (contact/penalty_contact.h, Clearances): faces far
-// from every obstacle when last measured, which cannot have come near since,
-// are skipped without computing where they are. Skipping must change
-// nothing: along a sequence of states, the contact energy, residual and
-// reports of one PenaltyContact that keeps its clearances from state to
-// state must equal, to round-off, those of a fresh one (built from the same
-// parameters, nothing kept) at the same state. The sequences bring faces
-// into contact after a measurement in three ways: the tissue moving by
-// steps small enough for the clearances to be kept (the faces' motion
-// bound), the obstacles translating towards the tissue with the tissue
-// still (their offsets), both, and the floor turning towards the tissue
-// about a distant pivot (its rotation alone: Pose::separation's term
-// |R - R'| times the faces' reach); in 2D and 3D, on P1, Q1 and Q2 cells
-// (Q2's shape functions take negative values: the bound's factor L), with
-// the penalty and the augmented Lagrangian (multipliers from an earlier
-// state). Also: the share of states at which some obstacle touches, so
-// that the sequences cross into contact. The cells are 0.25 wide and 1
-// tall, so that a face's own radius (a margin the clearance has built in)
-// is small against the motion allowed between two measurements (a quarter
-// of the cell's diameter): with the tissue's motion bound, or the
-// obstacles' offsets, left out of the skip test in the library, the kept
-// contact misses faces and this test fails (checked 2026-11-28).
+// Contact's broad phase (contact/penalty_contact.h, BroadPhase): a tree
+// over the boundary faces, refitted only once the faces have moved by more
+// than a quarter of their mean diameter, finds the faces within reach of
+// each obstacle. Skipping the rest must change nothing: along a sequence of
+// states, the contact energy, residual and reports of one PenaltyContact
+// that keeps its tree from state to state must equal, to round-off, those
+// of a fresh one (built from the same parameters, nothing kept) at the same
+// state. The sequences bring faces into contact after a fit in three ways:
+// the tissue moving by steps small enough for the fit to be kept (the
+// faces' motion bound), the obstacles translating towards the tissue with
+// the tissue still, both, and the floor turning towards the tissue about a
+// distant pivot; in 2D and 3D, on P1, Q1 and Q2 cells (Q2's shape functions
+// take negative values: the bound's factor L), with the penalty and the
+// augmented Lagrangian (multipliers from an earlier state). Also: the share
+// of states at which some obstacle touches, so that the sequences cross
+// into contact. The cells are 0.25 wide and 1 tall, so that a face's own
+// radius (a margin the ball has built in) is small against the motion
+// allowed between two fits (a quarter of the cell's diameter): with the
+// tissue's motion bound left out of the tree's queries in the library, the
+// kept contact misses faces and this test fails.
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>

@@ -6,6 +6,7 @@
 
 #include <tissuefem/contact/boundary_points.h>
 #include <tissuefem/contact/coulomb.h>
+#include <tissuefem/contact/face_tree.h>
 #include <tissuefem/contact/obstacle.h>
 #include <tissuefem/forces/interface.h>
 #include <tissuefem/forces/registry.h>
@@ -282,6 +283,24 @@ namespace tissuefem::contact
                                            const std::vector<Point_> &)> &face,
                   const bool every = false) const;
 
+    /// Each obstacle's pose at @p time, in the obstacles' order.
+    std::vector<Pose<dim>>
+    poses_at(const double time) const;
+
+    /**
+     * The broad phase for the ghosted @p u, the obstacles' @p poses and
+     * the largest multiplier of any point: refits the tree if the faces
+     * have moved too far since its fit, queries it if the fit, the poses
+     * or the multiplier changed since the last query, and returns in
+     * @p motion the faces' motion since the fit (length units). The answer
+     * is broad_phase.faces and .lower.
+     */
+    void
+    update_broad_phase(const VectorType             &u,
+                       const std::vector<Pose<dim>> &poses,
+                       const double                  largest_multiplier,
+                       double                       &motion) const;
+
     /// The penalty's fixed point on the friction bounds (augment()).
     forces::Augmentation
     update_bounds(const VectorType  &u,
@@ -322,32 +341,41 @@ namespace tissuefem::contact
     /// contact in it.
     std::unordered_map<std::uint64_t, Point<dim>> step_start;
     /**
-     * What for_each_face() keeps between calls to skip faces far from
-     * every obstacle without computing where they are: each face's
-     * clearance g(c) - r to each obstacle when last measured, at the
-     * faces' displacement values and the obstacles' poses of then. A
-     * face has moved by at most BoundaryPoints::motion_bound() since, an
-     * obstacle's points near it by at most Pose::separation() over the
-     * faces' reach from its pivot, and the distance is 1-Lipschitz: so
-     * where the clearance minus both still exceeds the largest multiplier
-     * over k, no point of the face can act.
-     * Measured anew once the motions exceed a quarter of the faces' mean
-     * diameter, or the faces change.
+     * What for_each_face() keeps between calls for its broad phase: a tree
+     * over the boundary faces (FaceTree), fitted to balls around each
+     * face's points at the faces' displacement values of the last fit,
+     * and the answer of its last query.
+     * A face has moved by at most BoundaryPoints::motion_bound() since the
+     * fit; the tree is refitted (one pass over the faces' points, the
+     * hierarchy kept) once that motion exceeds a quarter of the faces'
+     * mean diameter, and built anew when the faces change. A query asks
+     * for the faces that may act for any motion up to that limit, so that
+     * its answer serves every evaluation at the same fit, poses and
+     * largest multiplier (the iterations of a step): each then passes over
+     * the faces whose fitted clearance, less the motion, still exceeds
+     * what may act.
      */
-    struct Clearances
+    struct BroadPhase
     {
-      unsigned int           generation = 0;
-      std::vector<double>    reference;
-      std::vector<Pose<dim>> poses;
-      /// Per obstacle, the largest distance of a face's point from its
-      /// pivot (length units).
-      std::vector<double> reach;
-      /// Per face and obstacle (length units; -infinity: not measured).
-      std::vector<double> clearance;
-      /// The motion up to which they serve (length units).
+      unsigned int        generation = 0;
+      std::vector<double> reference;
+      FaceTree<dim>       tree;
+      /// The motion up to which the fit serves (length units).
       double limit = 0;
+      /// Each face's key, for finding the face of a state's key.
+      std::vector<std::uint64_t> keys;
+      /// Fits so far, and the fit, poses and largest multiplier of the
+      /// last query.
+      unsigned int           fits = 0, queried_fit = 0;
+      std::vector<Pose<dim>> queried_poses;
+      double                 queried_multiplier = 0;
+      /// The last query's answer: the faces that may act (ascending), and
+      /// per face and obstacle the clearance g(c) - r of its fitted ball
+      /// (length units).
+      std::vector<unsigned int> faces;
+      std::vector<double>       lower;
     };
-    mutable Clearances clearances;
+    mutable BroadPhase broad_phase;
     /// Drops the states when the mesh changes.
     boost::signals2::scoped_connection mesh_changed;
   };

@@ -94,21 +94,5 @@ namespace tissuefem::contact
         }
       return g;
     }
-
-    /**
-     * A bound on how far a point of the shape moves from where @p other
-     * puts it to where this pose does, over the points that this pose puts
-     * within @p reach of its pivot (c + t): |t - t'| + |R - R'| reach, with
-     * the Frobenius norm (above the spectral one). Both poses have the
-     * same pivot.
-     */
-    double
-    separation(const Pose &other, const double reach) const
-    {
-      const double shift = (translation - other.translation).norm();
-      if (!rotates && !other.rotates)
-        return shift;
-      return shift + (rotation - other.rotation).norm() * reach;
-    }
   };
 } // namespace tissuefem::contact
