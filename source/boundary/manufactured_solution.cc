@@ -1,6 +1,3 @@
-#include <deal.II/base/quadrature_lib.h>
-#include <deal.II/fe/fe_values.h>
-
 #include <tissuefem/base/input_error.h>
 #include <tissuefem/boundary/manufactured_solution.h>
 
@@ -252,58 +249,6 @@ namespace tissuefem::boundary
     c.initial_velocity     = field(&ManufacturedSolution::velocity);
   }
 
-
-  template <int dim>
-  typename ManufacturedSolution<dim>::Errors
-  ManufacturedSolution<dim>::errors(
-    const solid::Discretization<dim> &discretization,
-    const VectorType                 &u_ghosted,
-    const double                      t) const
-  {
-    // Two more points per direction than the element needs, so that the
-    // quadrature error stays below the discretization error.
-    // (deal.II's simplex Gauss rules stop at 4 points per direction.)
-    const unsigned int    n_points = discretization.fe->degree + 3;
-    const Quadrature<dim> quadrature
-      = discretization.simplex
-          ? Quadrature<dim>(QGaussSimplex<dim>(std::min(n_points, 4u)))
-          : Quadrature<dim>(QGauss<dim>(n_points));
-    FEValues<dim>                    fe_values(*discretization.mapping,
-                            *discretization.fe,
-                            quadrature,
-                            update_values | update_gradients
-                              | update_quadrature_points | update_JxW_values);
-    const FEValuesExtractors::Vector displacement_extractor(0);
-    std::vector<Tensor<1, dim>>      u_h(quadrature.size());
-    std::vector<Tensor<2, dim>>      grad_u_h(quadrature.size());
-    double                           sums[4] = {0, 0, 0, 0};
-    for (const auto &cell : discretization.dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          fe_values.reinit(cell);
-          fe_values[displacement_extractor].get_function_values(u_ghosted, u_h);
-          fe_values[displacement_extractor].get_function_gradients(u_ghosted,
-                                                                   grad_u_h);
-          for (const unsigned int q : fe_values.quadrature_point_indices())
-            {
-              const Point<dim>    &X  = fe_values.quadrature_point(q);
-              const Tensor<1, dim> u  = displacement(X, t);
-              const Tensor<2, dim> G  = gradient(X, t);
-              const double         dx = fe_values.JxW(q);
-              sums[0] += (u_h[q] - u).norm_square() * dx;
-              sums[1] += (grad_u_h[q] - G).norm_square() * dx;
-              sums[2] += u.norm_square() * dx;
-              sums[3] += G.norm_square() * dx;
-            }
-        }
-    Utilities::MPI::sum(ArrayView<const double>(sums, 4),
-                        parallel_tools::communicator(),
-                        ArrayView<double>(sums, 4));
-    return {std::sqrt(sums[0]),
-            std::sqrt(sums[1]),
-            std::sqrt(sums[2]),
-            std::sqrt(sums[3])};
-  }
 
   template class ManufacturedSolution<1>;
   template class ManufacturedSolution<2>;

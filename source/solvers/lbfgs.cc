@@ -120,7 +120,7 @@ namespace tissuefem::solvers
             ++result.iterations;
             // Armijo backtracking, quadratic interpolation within [0.1,
             // 0.5] of the last trial.
-            const double round_off = 1e-11 * std::abs(E);
+            const double round_off = energy_round_off * std::abs(E);
             double       alpha = 1, trial_E = E;
             bool         accepted = false;
             for (unsigned int k = 0; k <= parameters.max_line_search_steps; ++k)

@@ -441,7 +441,7 @@ namespace tissuefem::solvers
       // resting on a floor with friction (augmented Lagrangian) sat at
       // |R| = 3.1e-7 with updates of 1.2e-12, a first-order decrease of
       // 4e-19, every step length refused until Newton gave up.
-      if (slope < 0 && -slope > 1e-11 * std::abs(current_energy))
+      if (slope < 0 && -slope > energy_round_off * std::abs(current_energy))
         return energy_line_search(slope, alpha);
       return residual_line_search(alpha);
     }
@@ -454,7 +454,7 @@ namespace tissuefem::solvers
     {
       bool accepted = false;
       // Sums of many terms of either sign: allow their round-off.
-      const double round_off    = 1e-11 * std::abs(current_energy);
+      const double round_off    = energy_round_off * std::abs(current_energy);
       double       trial_energy = current_energy;
       bool         assembled    = false;
       for (unsigned int k = 0; k <= parameters.max_line_search_steps; ++k)

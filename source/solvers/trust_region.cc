@@ -154,7 +154,8 @@ namespace tissuefem::solvers
             // Near a solution the energy's change falls below its
             // round-off: there a Newton step that halves the residual is
             // taken (Newton's quadratic phase).
-            const double round_off = 1e-11 * std::abs(current_energy);
+            const double round_off
+              = energy_round_off * std::abs(current_energy);
             if (std::isfinite(trial_energy) && whole_newton
                 && std::abs(predicted) <= round_off)
               {

@@ -275,6 +275,21 @@ contact_patch("contact_tool_patch_2d", 2, 8, 30, [(1, 0.5), (0.5, 0.25), (0.25, 
 contact_patch("contact_patch_3d", 3, 20, 54,
               [(1, 1, 0.5), (0.5, 0.5, 0.25), (0.3, 0.7, 0.5)],
               ("contact_patch_3d", "contact_patch_3d.mpirun=2"))
+# Every element the solid has: Q2 (9 x 5 nodes), the mean dilatation (Q1),
+# the nodal dilatation (P1, whose pressures are not counted among the
+# displacement unknowns), P2 (18 vertices and 53 edges: 20 tetrahedra with
+# 56 faces, 32 of them the 16 boundary squares split, and Euler's V - E + F
+# - T = 1).
+contact_patch("contact_patch_q2_2d", 2, 8, 2 * 9 * 5,
+              [(1, 0.5), (0.5, 0.25), (0.25, 0.5)])
+contact_patch("contact_patch_mean_dilatation_2d", 2, 8, 30,
+              [(1, 0.5), (0.5, 0.25), (0.25, 0.5)])
+contact_patch("contact_patch_nodal_dilatation_3d", 3, 20, 54,
+              [(1, 1, 0.5), (0.5, 0.5, 0.25), (0.3, 0.7, 0.5)],
+              ("contact_patch_nodal_dilatation_3d",
+               "contact_patch_nodal_dilatation_3d.mpirun=2"))
+contact_patch("contact_patch_p2_3d", 3, 20, 3 * (18 + 53),
+              [(1, 1, 0.5), (0.5, 0.5, 0.25), (0.3, 0.7, 0.5)])
 contact_patch("contact_patch_surface_3d", 3, 20, 54,
               [(1, 1, 0.5), (0.5, 0.5, 0.25), (0.3, 0.7, 0.5)],
               ("contact_patch_surface_3d", "contact_patch_surface_3d.mpirun=2"))

@@ -7,7 +7,6 @@
 #include <tissuefem/base/parallel.h>
 #include <tissuefem/boundary/boundary_conditions.h>
 #include <tissuefem/materials/material_set.h>
-#include <tissuefem/solid/discretization.h>
 
 namespace tissuefem::boundary
 {
@@ -72,19 +71,6 @@ namespace tissuefem::boundary
      */
     void
     impose_on(BoundaryConditions<dim> &conditions) const;
-
-    /// Errors of a discrete displacement at time t (length units; the H1
-    /// seminorm error is dimensionless per unit volume^(1/2)).
-    struct Errors
-    {
-      /// ||u_h - u||_L2, ||Grad (u_h - u)||_L2, and ||u||_L2,
-      /// ||Grad u||_L2 for relative errors.
-      double l2, h1, l2_exact, h1_exact;
-    };
-    Errors
-    errors(const solid::Discretization<dim> &discretization,
-           const VectorType                 &u_ghosted,
-           const double                      t) const;
 
   private:
     ManufacturedParameters           parameters;

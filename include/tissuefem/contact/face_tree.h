@@ -21,9 +21,10 @@ namespace tissuefem::contact
    * quickly the further the balls have moved from where they were built.
    *
    * Queries use only that an obstacle's distance g is 1-Lipschitz (a true
-   * signed distance: doc/contact.md): every point within r of c has
-   * g >= g(c) - r. A node is a ball around its box, so a subtree whose
-   * node's lower bound exceeds its threshold holds no answer.
+   * signed distance: doc/user_guide.md, "Obstacles and contact"): every
+   * point within r of c has g >= g(c) - r. A node is a ball around its
+   * box, so a subtree whose node's lower bound exceeds its threshold holds
+   * no answer.
    */
   template <int dim>
   class FaceTree

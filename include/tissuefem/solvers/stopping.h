@@ -7,6 +7,15 @@
 namespace tissuefem::solvers
 {
   /**
+   * The round-off of an energy of size |E|, relative: energies are sums of
+   * many terms of either sign over the cells, so two evaluations of
+   * nearby states differ by about 1e-11 |E| with no decrease behind it.
+   * Changes within this are not judged as decrease or increase (Newton's
+   * line searches and slope test, the trust region, L-BFGS).
+   */
+  constexpr double energy_round_off = 1e-11;
+
+  /**
    * The tests every nonlinear solver (Newton's globalizations, L-BFGS)
    * makes before an iteration, with the residual norm @p norm of the
    * current iterate and @p first_norm of the first: a non-finite residual
