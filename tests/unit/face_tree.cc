@@ -104,15 +104,18 @@ namespace
             fewest_evals = std::min(fewest_evals, evaluations);
         }
     };
-    for (const double margin : {0., 0.03})
-      for (const double per_size : {0., 2.})
-        compare(margin, per_size);
-    tissuefem_tests::check(mismatches == 0 && answers > 0,
-                           label
-                             + ": the balls near() returns are those of "
-                               "the brute force",
-                           std::to_string(mismatches) + " of "
-                             + std::to_string(queries) + " queries differ");
+    // Every margin and threshold, against the brute force.
+    const auto agree = [&](const std::string &what) {
+      mismatches = queries = answers = 0;
+      for (const double margin : {0., 0.03})
+        for (const double per_size : {0., 2.})
+          compare(margin, per_size);
+      tissuefem_tests::check(mismatches == 0 && answers > 0,
+                             label + what,
+                             std::to_string(mismatches) + " of "
+                               + std::to_string(queries) + " queries differ");
+    };
+    agree(": the balls near() returns are those of the brute force");
     tissuefem_tests::check(fewest_evals < n / 5,
                            label
                              + ": a sphere costs fewer distance "
@@ -127,16 +130,8 @@ namespace
         radii[i] = 0.03 * (random.uniform() + 1);
       }
     tree.refit(centres, radii);
-    mismatches = queries = answers = 0;
-    for (const double margin : {0., 0.03})
-      for (const double per_size : {0., 2.})
-        compare(margin, per_size);
-    tissuefem_tests::check(mismatches == 0 && answers > 0,
-                           label
-                             + ": after the balls moved and the tree "
-                               "was refitted, the same as the brute force",
-                           std::to_string(mismatches) + " of "
-                             + std::to_string(queries) + " queries differ");
+    agree(": after the balls moved and the tree was refitted, the same as "
+          "the brute force");
 
     // A broken ball is found by every query, wherever it would lie.
     const unsigned int broken = n / 3;
