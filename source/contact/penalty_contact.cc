@@ -13,6 +13,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <tuple>
 
 namespace tissuefem::contact
 {
@@ -107,6 +108,22 @@ namespace tissuefem::contact
 
   namespace
   {
+    /// The ball around a face's points @p x: their centre and the largest
+    /// distance from it (length units).
+    template <int dim>
+    std::pair<Point<dim>, double>
+    ball_around(const std::vector<Point<dim>> &x)
+    {
+      Point<dim> centre;
+      for (const Point<dim> &p : x)
+        centre += p / double(x.size());
+      double radius = 0;
+      for (const Point<dim> &p : x)
+        radius = std::max(radius, p.distance(centre));
+      return {centre, radius};
+    }
+
+
     template <int dim>
     bool
     same_poses(const std::vector<Pose<dim>> &a, const std::vector<Pose<dim>> &b)
@@ -145,11 +162,8 @@ namespace tissuefem::contact
         for (unsigned int i = 0; i < faces.size(); ++i)
           {
             boundary.deformed(faces[i], u, x);
-            for (const Point<dim> &p : x)
-              centres[i] += p / double(x.size());
-            for (const Point<dim> &p : x)
-              radii[i] = std::max(radii[i], p.distance(centres[i]));
-            sizes[i] = faces[i].diameter;
+            std::tie(centres[i], radii[i]) = ball_around(x);
+            sizes[i]                       = faces[i].diameter;
           }
         if (same_faces)
           kept.tree.refit(centres, radii);
@@ -280,13 +294,8 @@ namespace tissuefem::contact
           }
         boundary.deformed(f, u, x);
         points.clear();
-        Point<dim> centre;
-        for (const Point<dim> &p : x)
-          centre += p / double(x.size());
-        double radius = 0;
-        for (const Point<dim> &p : x)
-          radius = std::max(radius, p.distance(centre));
-        bool any = false;
+        const auto [centre, radius] = ball_around(x);
+        bool any                    = false;
         for (unsigned int o = 0; o < n_obs; ++o)
           {
             const double clearance
