@@ -263,10 +263,10 @@ namespace tissuefem::solid
     const auto &w       = work_space<dim>();
     const bool  elastic = input.internal && input.u != nullptr;
     double     *r       = &vectors[c * n_dofs];
-    double     *K = input.jacobian ? &matrices[c * n_dofs * n_dofs] : nullptr;
+    double     *K       = input.jacobian ? &matrices[c * n_packed] : nullptr;
     std::fill(r, r + n_dofs, 0.);
     if (K)
-      std::fill(K, K + n_dofs * n_dofs, 0.);
+      std::fill(K, K + n_packed, 0.);
     // Cells not asked for, and inverted ones (the caller throws).
     if (skipped)
       return;
@@ -295,9 +295,12 @@ namespace tissuefem::solid
                   for (unsigned int m = 0; m < dim; ++m)
                     B[i] += (weight * g[k][m]) * w.A[p][i][m];
                 for (unsigned int l = k; l < n_nodes; ++l)
-                  for (unsigned int i = 0; i < dim; ++i)
-                    for (unsigned int j = 0; j < dim; ++j)
-                      K[(k * dim + i) * n_dofs + l * dim + j] += B[i][j] * g[l];
+                  {
+                    double *Kkl = K + block(k, l);
+                    for (unsigned int i = 0; i < dim; ++i)
+                      for (unsigned int j = 0; j < dim; ++j)
+                        Kkl[i * dim + j] += B[i][j] * g[l];
+                  }
               }
           }
       }
@@ -317,19 +320,12 @@ namespace tissuefem::solid
     if (K)
       {
         const double shift = input.mass_jacobian_coefficient;
+        // Only the node blocks k <= l are kept (K is symmetric: A_ambn =
+        // A_bnam).
         for (unsigned int k = 0; k < n_nodes; ++k)
           for (unsigned int l = k; l < n_nodes; ++l)
             for (unsigned int i = 0; i < dim; ++i)
-              K[(k * dim + i) * n_dofs + l * dim + i]
-                += shift * mass(rho, V, k == l);
-        // The node blocks above the diagonal were computed; mirror them
-        // (K is symmetric: A_ambn = A_bnam).
-        for (unsigned int k = 0; k < n_nodes; ++k)
-          for (unsigned int l = 0; l < k; ++l)
-            for (unsigned int i = 0; i < dim; ++i)
-              for (unsigned int j = 0; j < dim; ++j)
-                K[(k * dim + i) * n_dofs + l * dim + j]
-                  = K[(l * dim + j) * n_dofs + k * dim + i];
+              K[block(k, l) + i * dim + i] += shift * mass(rho, V, k == l);
       }
   }
 
@@ -339,7 +335,7 @@ namespace tissuefem::solid
   LinearSimplexKernel<dim>::evaluate(const Input &input)
   {
     if (input.jacobian)
-      matrices.resize(volume.size() * n_dofs * n_dofs);
+      matrices.resize(volume.size() * n_packed);
     mass_only = !(input.internal && input.u != nullptr);
     // An active region computes its own cells only, batched afresh, so
     // that its cost follows its size.
@@ -481,7 +477,7 @@ namespace tissuefem::solid
   void
   LinearSimplexKernel<dim>::add_direct(double                      *residual,
                                        const std::vector<double *> &row_values,
-                                       const std::vector<int>      &entry,
+                                       const std::vector<std::uint16_t> &entry,
                                        const bool jacobian) const
   {
     const unsigned int n_rows = row_begin.size() - 1;
@@ -500,18 +496,27 @@ namespace tissuefem::solid
             double *values = row_values[r];
             for (unsigned int s = row_begin[r]; s < row_begin[r + 1]; ++s)
               {
-                const unsigned int position = row_positions[s];
-                const unsigned int c        = position / n_dofs;
-                const unsigned int i        = local_index[position % n_dofs];
-                const int         *e        = &entry[(c * n_dofs + i) * n_dofs];
-                const double      *K        = &matrices[position * n_dofs];
-                if (mass_only)
-                  for (unsigned int j = (position % n_dofs) % dim; j < n_dofs;
-                       j += dim)
-                    values[e[local_index[j]]] += K[j];
-                else
-                  for (unsigned int j = 0; j < n_dofs; ++j)
-                    values[e[local_index[j]]] += K[j];
+                const unsigned int   position = row_positions[s];
+                const unsigned int   c        = position / n_dofs;
+                const unsigned int   row      = position % n_dofs;
+                const unsigned int   k = row / dim, a = row % dim;
+                const std::uint16_t *e
+                  = &entry[(c * n_dofs + local_index[row]) * n_dofs];
+                const double *K = &matrices[c * n_packed];
+                // Row (k, a): of block (k, l) its row a, of block (l, k)
+                // (l < k, the one kept) its column a.
+                for (unsigned int l = 0; l < n_nodes; ++l)
+                  {
+                    const unsigned int start
+                      = l >= k ? block(k, l) + a * dim : block(l, k) + a;
+                    const unsigned int  stride = l >= k ? 1 : dim;
+                    const unsigned int *J      = &local_index[l * dim];
+                    if (mass_only)
+                      values[e[J[a]]] += K[start + a * stride];
+                    else
+                      for (unsigned int b = 0; b < dim; ++b)
+                        values[e[J[b]]] += K[start + b * stride];
+                  }
               }
           }
       },

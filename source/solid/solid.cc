@@ -79,6 +79,7 @@ namespace tissuefem::solid
                                    held->vertices,
                                    discretization.locally_relevant);
     cache.build(discretization, body_force_present);
+    energy_memo.valid = false;
     find_dirichlet_points();
     // Asked for every explicit step; the mesh's extent changes only here.
     diameter
@@ -167,12 +168,15 @@ namespace tissuefem::solid
                              VectorType            &x,
                              const VectorType      &b,
                              const bool             refactorize,
-                             const double           relative_tolerance)
+                             const double           relative_tolerance,
+                             const bool             from_guess)
   {
+    // The nodal system is solved directly: no guess to start from.
     if (nodal_system)
       nodal_system->solve(solver, x, b, refactorize);
     else
-      solver.solve(jacobian_matrix, x, b, refactorize, relative_tolerance);
+      solver.solve(
+        jacobian_matrix, x, b, refactorize, relative_tolerance, from_guess);
   }
 
 
@@ -187,7 +191,7 @@ namespace tissuefem::solid
     access.ghost_index.resize(n_cells * n);
     access.direct.assign(n_cells, false);
     access.row.assign(n_cells * n, -1);
-    access.entry.assign(n_cells * n * n, -1);
+    access.entry.assign(n_cells * n * n, 0);
     access.row_values = row_value_pointers(jacobian_matrix);
     for (unsigned int c = 0; c < n_cells; ++c)
       {
@@ -202,13 +206,15 @@ namespace tissuefem::solid
             if (owned.is_element(dofs[i]))
               access.row[c * n + i] = owned.index_within_set(dofs[i]);
           }
-        if (!direct)
-          continue;
-        for (unsigned int i = 0; i < n; ++i)
-          for (unsigned int j = 0; j < n; ++j)
-            access.entry[(c * n + i) * n + j]
-              = entry_in_row(jacobian_matrix, access.row[c * n + i], dofs[j]);
-        access.direct[c] = true;
+        for (unsigned int i = 0; direct && i < n; ++i)
+          for (unsigned int j = 0; direct && j < n; ++j)
+            {
+              const int position
+                = entry_in_row(jacobian_matrix, access.row[c * n + i], dofs[j]);
+              direct = position >= 0 && position < (1 << 16);
+              access.entry[(c * n + i) * n + j] = position;
+            }
+        access.direct[c] = direct;
       }
     // Cells by ghosted entry, for active regions (cells_touching).
     access.cells_of_begin.assign(ghosts.NumMyElements() + 1, 0);

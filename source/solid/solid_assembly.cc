@@ -579,8 +579,8 @@ namespace tissuefem::solid
         if (request.jacobian)
           for (unsigned int i = 0; i < n; ++i)
             {
-              double    *values = access.row_values[row[i]];
-              const int *entry  = &access.entry[(c * n + i) * n];
+              double              *values = access.row_values[row[i]];
+              const std::uint16_t *entry  = &access.entry[(c * n + i) * n];
               for (unsigned int j = 0; j < n; ++j)
                 values[entry[j]] += copy.matrix(i, j);
             }

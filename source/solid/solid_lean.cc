@@ -136,10 +136,9 @@ namespace tissuefem::solid
         std::copy(cache.dofs(c), cache.dofs(c) + n, dofs.begin());
         if (request.jacobian)
           {
-            const double *K = lean->cell_matrix(c);
             for (unsigned int i = 0; i < n; ++i)
               for (unsigned int j = 0; j < n; ++j)
-                matrix(index[i], index[j]) = K[i * n + j];
+                matrix(index[i], index[j]) = lean->cell_matrix(c, i, j);
             rows.distribute_local_to_global(matrix,
                                             rhs,
                                             dofs,

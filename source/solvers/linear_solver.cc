@@ -66,8 +66,12 @@ namespace tissuefem::solvers
                       VectorType       &x,
                       const VectorType &b,
                       const bool        refactorize,
-                      const double      relative_tolerance)
+                      const double      relative_tolerance,
+                      const bool        from_guess)
   {
+    // The methods start from x as they find it (linear::Interface::solve).
+    if (!from_guess)
+      x = 0;
     if (matrix != &A.trilinos_matrix())
       {
         reset();

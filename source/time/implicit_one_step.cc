@@ -78,9 +78,11 @@ namespace tissuefem::time
     ++report.jacobian_evaluations;
     residual *= -1.;
     update.reinit(u);
+    const bool from_guess
+      = !context->linear_solver.direct() && update_guess(u, update);
     start = std::chrono::steady_clock::now();
     solid.solve_jacobian(
-      context->linear_solver, update, residual, refactorize, 0.);
+      context->linear_solver, update, residual, refactorize, 0., from_guess);
     report.solve_seconds += seconds_since(start);
     // The cell unknowns of the three-field element move with the update.
     auto *unknowns = solid.iteration_unknowns();

@@ -6,7 +6,9 @@
 // 1e-6, from 'Relative tolerance' 1e-10), again for a second right-hand
 // side without refactorizing, again after the matrix values change, and
 // on a new matrix object of another pattern (the kept state is dropped);
-// a loose forcing term must still meet its residual bound. Direct methods
+// a loose forcing term must still meet its residual bound; an iterative
+// one starts from the caller's guess only when told to, and then needs
+// no iteration at the answer and fewer near it. Direct methods
 // must also solve symmetric indefinite and unsymmetric systems met in turn
 // on one matrix object (MUMPS, with its symmetric factorization allowed,
 // factorizes the symmetric ones as L D L^T). Checks
@@ -286,6 +288,44 @@ namespace
                              + " iterates less for a loose forcing term",
                            std::to_string(loose) + " against "
                              + std::to_string(tight));
+
+    // A guess (the linearly implicit Euler's h v_n): an iterative solver
+    // starts there only when told, and then stops as soon as the same test
+    // holds; a direct one solves as ever.
+    const auto iterations_from = [&](VectorType &start, const bool guess) {
+      const unsigned int first = solver->statistics().iterations;
+      solver->solve(large, start, b, true, 0, guess);
+      return solver->statistics().iterations - first;
+    };
+    VectorType near(exact), perturbation = random_vector(large, 8);
+    near.add(1e-4, perturbation);
+    x                             = 0;
+    const unsigned int from_zero  = iterations_from(x, true);
+    x                             = exact;
+    const unsigned int ignored    = iterations_from(x, false);
+    x                             = exact;
+    const unsigned int at_answer  = iterations_from(x, true);
+    x                             = near;
+    const unsigned int from_near  = iterations_from(x, true);
+    const double       near_error = relative_error(x, exact);
+    tissuefem_tests::check(ignored == from_zero,
+                           "solver " + name
+                             + " starts from zero unless given a guess",
+                           std::to_string(ignored) + " from the answer "
+                             + "not given as a guess, against "
+                             + std::to_string(from_zero) + " from zero");
+    tissuefem_tests::check(near_error <= (solver->direct() ? 1e-12 : 1e-6),
+                           "solver " + name
+                             + " recovers the answer from a "
+                               "guess near it",
+                           "relative error " + std::to_string(near_error));
+    tissuefem_tests::check(solver->direct()
+                             || (at_answer == 0 && from_near < from_zero),
+                           "solver " + name
+                             + " iterates less from a guess near the answer",
+                           std::to_string(at_answer) + " from the answer, "
+                             + std::to_string(from_near) + " near it, "
+                             + std::to_string(from_zero) + " from zero");
     // What a direct solver keeps refers to the matrix: forget it before
     // the matrices go.
     solver->reset();

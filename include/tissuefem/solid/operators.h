@@ -162,15 +162,18 @@ namespace tissuefem::solid
 
     /// Solves J x = b with the Jacobian of the last implicit_residual() or
     /// implicit_residual_lifting() that asked for it (b its negated
-    /// residual), as solvers::LinearSolver::solve() does.
+    /// residual), as solvers::LinearSolver::solve() does (@p from_guess:
+    /// an iterative solver starts from @p x).
     virtual void
     solve_jacobian(solvers::LinearSolver &solver,
                    VectorType            &x,
                    const VectorType      &b,
                    const bool             refactorize,
-                   const double           relative_tolerance)
+                   const double           relative_tolerance,
+                   const bool             from_guess = false)
     {
-      solver.solve(jacobian(), x, b, refactorize, relative_tolerance);
+      solver.solve(
+        jacobian(), x, b, refactorize, relative_tolerance, from_guess);
     }
 
     /// f_int(u) alone (no matrix): what explicit methods evaluate. Rows of

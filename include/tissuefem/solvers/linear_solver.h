@@ -71,14 +71,18 @@ namespace tissuefem::solvers
      * @p relative_tolerance > 0 asks an iterative solver for |b - A x| <=
      * that times |b| (an inexact Newton method's forcing term) instead of
      * 'Relative tolerance', when that is looser; direct solvers ignore
-     * it.
+     * it. @p from_guess: an iterative solver starts from @p x as given
+     * (a predictor of the answer) instead of from zero; its stopping test
+     * is the same, relative to |b|, so a good guess only saves iterations.
+     * Direct solvers ignore it.
      */
     void
     solve(const MatrixType &A,
           VectorType       &x,
           const VectorType &b,
           const bool        refactorize        = true,
-          const double      relative_tolerance = 0);
+          const double      relative_tolerance = 0,
+          const bool        from_guess         = false);
 
     /// Whether the method factorizes the matrix (not 'cg amg').
     bool

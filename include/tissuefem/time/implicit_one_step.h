@@ -127,13 +127,24 @@ namespace tissuefem::time
     /// new factorization or, if not @p refactorize, the kept one. Returns
     /// the largest entry of the update (length units); throws SolverError,
     /// leaving @p u unchanged, if the guess cannot be evaluated or the
-    /// system solved.
+    /// system solved. An iterative solver starts from update_guess().
     double
     lift_boundary_increment(const double mass_coefficient,
                             const double time,
                             VectorType  &u,
                             StepReport  &report,
                             const bool   refactorize = true);
+
+    /// A predictor of lift_boundary_increment()'s update from @p u, for an
+    /// iterative solver to start from; false (the default): none, start
+    /// from zero.
+    virtual bool
+    update_guess(const VectorType &u, VectorType &update) const
+    {
+      (void)u;
+      (void)update;
+      return false;
+    }
 
     /**
      * The step's boundary lifting ('Lift boundary increments'): one

@@ -158,10 +158,13 @@ namespace tissuefem::solvers::linear
             : std::min<unsigned int>(max_iterations,
                                      std::ceil(rebuild_factor
                                                * reference_iterations));
-      unsigned int iterations = cg_solve(A, x, b, tolerance, cap);
+      // The caller's starting iterate, for the retry with a new hierarchy.
+      const VectorType start(x);
+      unsigned int     iterations = cg_solve(A, x, b, tolerance, cap);
       if (iterations == std::numeric_limits<unsigned int>::max())
         {
           stats.iterations += cap;
+          x = start;
           build_amg(A, stats);
           iterations = cg_solve(A, x, b, tolerance, max_iterations);
         }
@@ -224,7 +227,6 @@ namespace tissuefem::solvers::linear
     {
       SolverControl        control(max_iterations, tolerance * b.l2_norm());
       SolverCG<VectorType> cg(control);
-      x = 0;
       try
         {
           cg.solve(A, x, b, *amg);
