@@ -49,6 +49,11 @@ namespace tissuefem::postprocess
     r.add("peak memory",
           totals.peak_bytes / 1e6,
           "MB resident, sum over processes");
+    for (const auto &[part, bytes] : totals.memory_parts)
+      r.add("memory " + part,
+            bytes / 1e6,
+            "MB held at the end by the solid's " + part
+              + ", sum over processes");
   }
 
   template class RunRecordRows<1>;

@@ -416,6 +416,30 @@ namespace tissuefem::problems
     }
 
 
+    /// What the solid holds by part, per cell, beside the peak: what the
+    /// rest of the peak is (libraries, vectors, the linear solver) follows.
+    template <int dim>
+    std::string
+    memory_parts_report(const postprocess::RunTotals &totals,
+                        const Triangulation<dim>     &triangulation)
+    {
+      const double       cells = triangulation.n_global_active_cells();
+      double             sum   = 0;
+      std::ostringstream s;
+      s << std::setprecision(3)
+        << "memory the solid holds at the end (bytes per cell):";
+      for (const auto &[part, bytes] : totals.memory_parts)
+        {
+          s << (sum == 0 ? " " : ", ") << part << ' ' << bytes / cells;
+          sum += bytes;
+        }
+      s << "; together " << sum / 1e6 << " MB of the peak "
+        << totals.peak_bytes / 1e6
+        << " MB (the rest: libraries, vectors, linear solver)";
+      return s.str();
+    }
+
+
     /// The share of steps within the budget, median and worst step time.
     std::string
     real_time_report(std::vector<double> seconds,
@@ -478,6 +502,12 @@ namespace tissuefem::problems
     Utilities::System::get_memory_stats(memory);
     totals.peak_bytes = Utilities::MPI::sum(1024. * memory.VmHWM,
                                             parallel_tools::communicator());
+    totals.memory_parts.clear();
+    for (const auto &[part, bytes] : scene->solid->memory_parts())
+      totals.memory_parts.emplace_back(
+        part,
+        Utilities::MPI::sum(static_cast<double>(bytes),
+                            parallel_tools::communicator()));
     output::RunRecord record;
     // What adaptation made of the mesh, for regression tests that must see
     // refinement that stopped: the finest level and whether there are
@@ -496,6 +526,7 @@ namespace tissuefem::problems
            << totals.peak_bytes / 1e6 << " MB, "
            << totals.peak_bytes / scene->solid->n_dofs() << " bytes per unknown"
            << std::endl;
+    screen << memory_parts_report(totals, scene->triangulation) << std::endl;
     if (const std::string s = integrator->summary(); !s.empty())
       screen << s << std::endl;
     screen << real_time_report(totals.step_seconds,

@@ -1,3 +1,4 @@
+#include <deal.II/base/memory_consumption.h>
 #include <deal.II/base/parallel.h>
 
 #include <tissuefem/materials/tangent_projection.h>
@@ -522,6 +523,22 @@ namespace tissuefem::solid
       },
       256);
   }
+
+  template <int dim>
+  std::size_t
+  LinearSimplexKernel<dim>::memory_consumption() const
+  {
+    using MemoryConsumption::memory_consumption;
+    return memory_consumption(order) + memory_consumption(selection)
+           + (batches.capacity() + selection_batches.capacity()) * sizeof(Batch)
+           + memory_consumption(gradients) + memory_consumption(volume)
+           + memory_consumption(ghost) + memory_consumption(local_index)
+           + memory_consumption(point_begin) + memory_consumption(point_fibre)
+           + memory_consumption(point_weight) + memory_consumption(row_begin)
+           + memory_consumption(row_positions) + memory_consumption(vectors)
+           + memory_consumption(matrices);
+  }
+
 
   template class LinearSimplexKernel<1>;
   template class LinearSimplexKernel<2>;

@@ -1,3 +1,4 @@
+#include <deal.II/base/memory_consumption.h>
 #include <deal.II/base/work_stream.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_values.h>
@@ -177,6 +178,34 @@ namespace tissuefem::solid
     else
       solver.solve(
         jacobian_matrix, x, b, refactorize, relative_tolerance, from_guess);
+  }
+
+
+  template <int dim>
+  std::vector<std::pair<std::string, std::size_t>>
+  Solid<dim>::memory_parts() const
+  {
+    using MemoryConsumption::memory_consumption;
+    const auto &d = discretization;
+    std::size_t caches
+      = cache.memory_consumption() + (lean ? lean->memory_consumption() : 0)
+        + memory_consumption(access.ghost_index) + access.direct.capacity() / 8
+        + memory_consumption(access.row) + memory_consumption(access.entry)
+        + memory_consumption(access.cells_of_begin)
+        + memory_consumption(access.cells_of)
+        + memory_consumption(access.row_values);
+    return {{"mesh", d.dof_handler.get_triangulation().memory_consumption()},
+            {"numbering",
+             d.dof_handler.memory_consumption()
+               + d.constraints.memory_consumption()
+               + d.hanging_node_constraints.memory_consumption()
+               + d.locally_owned.memory_consumption()
+               + d.locally_relevant.memory_consumption()},
+            {"assembly caches", caches},
+            {"Jacobian", jacobian_matrix.memory_consumption()},
+            {"mass matrix",
+             (mass ? mass->memory_consumption() : 0)
+               + (lumped ? lumped->memory_consumption() : 0)}};
   }
 
 

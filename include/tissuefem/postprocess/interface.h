@@ -58,6 +58,9 @@ namespace tissuefem::postprocess
     unsigned int        newton_iterations = 0, rejected_attempts = 0;
     /// Resident memory, summed over processes (bytes).
     double peak_bytes = 0;
+    /// What the solid holds at the end, by part (Solid::memory_parts()),
+    /// summed over processes (bytes).
+    std::vector<std::pair<std::string, double>> memory_parts;
     /// Wall-clock seconds from set-up to the end of the steps.
     double wall_seconds = 0;
   };

@@ -18,7 +18,8 @@ namespace tissuefem::solid
    * element, so dim times fewer numbers than FEValues keeps). Assembly then
    * does only the element arithmetic: for P1 tetrahedra the gradients are
    * constant and the per-cell cost drops to that of a hand-written kernel.
-   * Memory per cell: 8 (n_q (1 + dim n_scalar) + n_dofs) bytes.
+   * Memory per cell: 8 (n_q (1 + dim n_scalar) + n_dofs) bytes, 8 (n_q +
+   * dim n_scalar + n_dofs) on linear simplices.
    */
   template <int dim>
   class CellCache
@@ -65,7 +66,7 @@ namespace tissuefem::solid
              const unsigned int q,
              const unsigned int k) const
     {
-      return gradients[(c * n_q + q) * n_scalar + k];
+      return gradients[c * cell_stride + q * q_stride + k];
     }
     const Point<dim> &
     point(const unsigned int c, const unsigned int q) const
@@ -73,11 +74,19 @@ namespace tissuefem::solid
       return points[c * n_q + q];
     }
 
+    /// Bytes held (the vectors' capacities).
+    std::size_t
+    memory_consumption() const;
+
   private:
     std::vector<CellIterator>            owned_cells;
     std::vector<types::global_dof_index> dof_indices;
     std::vector<double>                  jxw;
-    std::vector<Tensor<1, dim>>          gradients;
-    std::vector<Point<dim>>              points;
+    /// gradient(c, q, k) at c * cell_stride + q * q_stride + k: q_stride
+    /// is 0 where the gradients are constant on each cell (linear
+    /// simplices), which keeps one set per cell.
+    std::vector<Tensor<1, dim>> gradients;
+    unsigned int                cell_stride = 0, q_stride = 0;
+    std::vector<Point<dim>>     points;
   };
 } // namespace tissuefem::solid

@@ -155,6 +155,11 @@ namespace tissuefem::solid
                const std::vector<std::uint16_t> &entry,
                const bool                        jacobian) const;
 
+    /// Bytes held (per-cell data and the last evaluation's element
+    /// vectors and matrices).
+    std::size_t
+    memory_consumption() const;
+
     /// The cells the last evaluation with Input::cells and no Jacobian
     /// computed, in batch order.
     const std::vector<unsigned int> &

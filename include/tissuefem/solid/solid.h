@@ -216,6 +216,13 @@ namespace tissuefem::solid
     double
     stored_energy(const VectorType &u) const override;
 
+    /// What this process holds of the solid, by part (name, bytes): the
+    /// mesh (every process holds all of it), the dof numbering with its
+    /// constraints, assembly's per-cell caches, the Jacobian and the mass
+    /// matrix; not vectors, nor a linear solver's factors or hierarchy.
+    std::vector<std::pair<std::string, std::size_t>>
+    memory_parts() const;
+
     double
     kinetic_energy(const VectorType &v) override;
 

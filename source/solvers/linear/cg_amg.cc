@@ -118,7 +118,10 @@ namespace tissuefem::solvers::linear
                         "|R_0|) instead where that is looser (Eisenstat and "
                         "Walker's inexact Newton: loose solves far from the "
                         "solution, tight ones near it); Newton's own "
-                        "tolerances decide the accuracy.");
+                        "tolerances decide the accuracy. The linearly "
+                        "implicit Euler starts CG from its predictor h v_n "
+                        "instead of zero (the same test, fewer "
+                        "iterations).");
       prm.declare_entry("Maximum iterations",
                         "1000",
                         Patterns::Integer(1),
