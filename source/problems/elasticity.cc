@@ -428,9 +428,11 @@ namespace tissuefem::problems
       std::ostringstream s;
       s << std::setprecision(3)
         << "memory the solid holds at the end (bytes per cell):";
+      const char *separator = " ";
       for (const auto &[part, bytes] : totals.memory_parts)
         {
-          s << (sum == 0 ? " " : ", ") << part << ' ' << bytes / cells;
+          s << separator << part << ' ' << bytes / cells;
+          separator = ", ";
           sum += bytes;
         }
       s << "; together " << sum / 1e6 << " MB of the peak "

@@ -240,7 +240,8 @@ namespace tissuefem::solid
             {
               const int position
                 = entry_in_row(jacobian_matrix, access.row[c * n + i], dofs[j]);
-              direct = position >= 0 && position < (1 << 16);
+              // entry_in_row() throws where the entry is missing.
+              direct                            = position < (1 << 16);
               access.entry[(c * n + i) * n + j] = position;
             }
         access.direct[c] = direct;

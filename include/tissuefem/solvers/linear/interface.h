@@ -73,9 +73,10 @@ namespace tissuefem::solvers::linear
     /**
      * Solves A x = b for a matrix whose layout is that of the previous call
      * unless reset() was called. An iterative method starts from @p x as
-     * given (LinearSolver zeroes it unless its caller has a guess). Throws SolverError (or lets a deal.II
-     * exception out) on failure. @p refactorize false: a direct method
-     * reuses the factorization of the previous call as is.
+     * given (LinearSolver zeroes it unless its caller has a guess). Throws
+     * SolverError (or lets a deal.II exception out) on failure. @p refactorize
+     * false: a direct method reuses the factorization of the previous call as
+     * is.
      * @p relative_tolerance > 0: an iterative method may stop at
      * |b - A x| <= that times |b| where that is looser than its own
      * tolerance. Counts what it did in @p stats.
