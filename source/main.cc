@@ -2,7 +2,7 @@
 // tissuefem::run_command_line() for the command line.
 #include <deal.II/base/mpi.h>
 
-#include <tissuefem/base/application.h>
+#include <tissuefem/app/command_line.h>
 
 int
 main(int argc, char **argv)

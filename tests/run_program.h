@@ -2,7 +2,7 @@
 // muted, for tests that check what a whole run writes.
 #pragma once
 
-#include <tissuefem/base/application.h>
+#include <tissuefem/app/parameters.h>
 
 #include <mpi.h>
 

@@ -11,7 +11,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/dofs/dof_tools.h>
 
-#include <tissuefem/base/application.h>
+#include <tissuefem/app/parameters.h>
 
 #include "../tests.h"
 #include "solid_scene.h"

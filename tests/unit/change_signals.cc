@@ -11,7 +11,7 @@
 #include <deal.II/base/tensor.h>
 
 #include <tissuefem/adaptation/mesh_adaptation.h>
-#include <tissuefem/base/application.h>
+#include <tissuefem/app/parameters.h>
 
 #include "../tests.h"
 #include "solid_scene.h"

@@ -24,7 +24,7 @@
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/component_mask.h>
 
-#include <tissuefem/base/application.h>
+#include <tissuefem/app/parameters.h>
 
 #include "../tests.h"
 #include "solid_scene.h"

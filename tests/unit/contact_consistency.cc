@@ -20,7 +20,7 @@
 #include <deal.II/fe/component_mask.h>
 #include <deal.II/lac/vector.h>
 
-#include <tissuefem/base/application.h>
+#include <tissuefem/app/parameters.h>
 
 #include "../tests.h"
 #include "solid_scene.h"

@@ -23,7 +23,7 @@
 
 #include <deal.II/base/mpi.h>
 
-#include <tissuefem/base/application.h>
+#include <tissuefem/app/parameters.h>
 
 #include "../tests.h"
 #include "solid_scene.h"

@@ -22,7 +22,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/dofs/dof_tools.h>
 
-#include <tissuefem/base/application.h>
+#include <tissuefem/app/parameters.h>
 
 #include "../tests.h"
 #include "solid_scene.h"

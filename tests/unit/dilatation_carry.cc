@@ -34,7 +34,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <tissuefem/adaptation/mesh_adaptation.h>
-#include <tissuefem/base/application.h>
+#include <tissuefem/app/parameters.h>
 #include <tissuefem/problems/interface.h>
 
 #include "../tests.h"

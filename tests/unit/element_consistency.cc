@@ -13,7 +13,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
-#include <tissuefem/base/application.h>
+#include <tissuefem/app/parameters.h>
 #include <tissuefem/solid/mean_dilatation.h>
 
 #include "../tests.h"

@@ -25,7 +25,7 @@
 
 #include <deal.II/base/mpi.h>
 
-#include <tissuefem/base/application.h>
+#include <tissuefem/app/parameters.h>
 
 #include "../run_program.h"
 #include "../tests.h"

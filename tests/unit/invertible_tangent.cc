@@ -18,7 +18,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
-#include <tissuefem/base/application.h>
+#include <tissuefem/app/parameters.h>
 #include <tissuefem/materials/invertible_neo_hookean.h>
 
 #include "../tests.h"

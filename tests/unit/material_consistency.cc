@@ -10,7 +10,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
-#include <tissuefem/base/application.h>
+#include <tissuefem/app/parameters.h>
 #include <tissuefem/materials/consistency_check.h>
 #include <tissuefem/materials/material_set.h>
 

@@ -12,7 +12,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
-#include <tissuefem/base/application.h>
+#include <tissuefem/app/parameters.h>
 #include <tissuefem/solvers/newton.h>
 
 #include "../tests.h"

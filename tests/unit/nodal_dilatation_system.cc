@@ -10,7 +10,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
-#include <tissuefem/base/application.h>
+#include <tissuefem/app/parameters.h>
 
 #include "../tests.h"
 #include "solid_scene.h"

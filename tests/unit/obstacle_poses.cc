@@ -32,7 +32,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
-#include <tissuefem/base/application.h>
+#include <tissuefem/app/parameters.h>
 #include <tissuefem/base/input_error.h>
 #include <tissuefem/contact/obstacle.h>
 

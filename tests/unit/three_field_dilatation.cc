@@ -23,7 +23,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
-#include <tissuefem/base/application.h>
+#include <tissuefem/app/parameters.h>
 #include <tissuefem/problems/interface.h>
 
 #include "../tests.h"

@@ -11,7 +11,7 @@
 
 #include <deal.II/base/mpi.h>
 
-#include <tissuefem/base/application.h>
+#include <tissuefem/app/parameters.h>
 #include <tissuefem/tool/interface.h>
 
 #include "../run_program.h"

@@ -33,8 +33,4 @@ namespace tissuefem
   read_parameters(ParameterHandler               &prm,
                   const std::string              &file,
                   const std::vector<std::string> &overrides);
-
-  /// The command-line program; returns the process exit status.
-  int
-  run_command_line(int argc, char **argv);
 } // namespace tissuefem

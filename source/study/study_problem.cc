@@ -1,12 +1,12 @@
-#include <tissuefem/base/application.h>
+#include <tissuefem/app/parameters.h>
 #include <tissuefem/base/input_error.h>
 #include <tissuefem/base/interruption.h>
 #include <tissuefem/base/parallel.h>
 #include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/base/timing.h>
 #include <tissuefem/output/run_record.h>
-#include <tissuefem/problems/study.h>
 #include <tissuefem/study/runner.h>
+#include <tissuefem/study/study_problem.h>
 
 #include <chrono>
 #include <filesystem>
@@ -15,7 +15,7 @@
 #include <map>
 #include <sstream>
 
-namespace tissuefem::problems
+namespace tissuefem::study
 {
   void
   Study::declare_parameters(ParameterHandler &prm)
@@ -95,7 +95,7 @@ namespace tissuefem::problems
   }
 
 
-  Study::Study(ParameterHandler &prm, const RunContext &context)
+  Study::Study(ParameterHandler &prm, const problems::RunContext &context)
       : context(context)
   {
     require(parallel_tools::n_processes() == 1,
@@ -488,4 +488,4 @@ namespace tissuefem::problems
     "study",
     "runs an elasticity scene over variants and charts error against cost "
     "(see 'Study').")
-} // namespace tissuefem::problems
+} // namespace tissuefem::study

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-namespace tissuefem::problems
+namespace tissuefem::study
 {
   /**
    * 'Problem = study': runs one elasticity scene over a set of variants
@@ -27,10 +27,10 @@ namespace tissuefem::problems
    * Not a template on dim, unlike the other problems: the study itself
    * computes nothing in space; each variant is a process of its own.
    */
-  class Study : public Interface
+  class Study : public problems::Interface
   {
   public:
-    Study(ParameterHandler &prm, const RunContext &context);
+    Study(ParameterHandler &prm, const problems::RunContext &context);
 
     static void
     declare_parameters(ParameterHandler &prm);
@@ -42,8 +42,8 @@ namespace tissuefem::problems
     run() override;
 
   private:
-    RunContext  context;
-    std::string scene, directory, runs_directory, launcher, title;
+    problems::RunContext context;
+    std::string          scene, directory, runs_directory, launcher, title;
     std::vector<study::Setting> settings;
     std::vector<study::Axis>    axes;
     unsigned int                rate_axis;
@@ -116,4 +116,4 @@ namespace tissuefem::problems
     run_choices(const std::vector<study::Row> &rows,
                 const std::string             &what) const;
   };
-} // namespace tissuefem::problems
+} // namespace tissuefem::study
