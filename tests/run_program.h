@@ -2,7 +2,7 @@
 // muted, for tests that check what a whole run writes.
 #pragma once
 
-#include <tissuefem/app/parameters.h>
+#include <tissuefem/app/command_line.h>
 
 #include <mpi.h>
 

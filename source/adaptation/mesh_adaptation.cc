@@ -186,15 +186,15 @@ namespace tissuefem::adaptation
     const auto u_index = std::find(vectors.begin(), vectors.end(), &u);
     AssertThrow(u_index != vectors.end(),
                 ExcMessage("adapt(): u must be among the vectors"));
-    const unsigned int u_k = u_index - vectors.begin();
-    const bool carry       = solid.get_materials().mean_dilatation_formulation()
-                       && parameters.dilatation_release_steps > 0;
+    const unsigned int                 u_k     = u_index - vectors.begin();
+    solid::DilatationCarry<dim> *const carried = solid.dilatation_carry();
+    const bool carry = carried && parameters.dilatation_release_steps > 0;
     if (carry)
-      solid.dilatation_carry().record(dof_handler,
-                                      *discretization.mapping,
-                                      discretization.cell_quadrature,
-                                      old_values[u_k],
-                                      time);
+      carried->record(dof_handler,
+                      *discretization.mapping,
+                      discretization.cell_quadrature,
+                      old_values[u_k],
+                      time);
     SolutionTransfer<dim, Vector<double>> transfer(dof_handler);
     transfer.prepare_for_coarsening_and_refinement(old_values);
     triangulation.execute_coarsening_and_refinement();
@@ -217,18 +217,18 @@ namespace tissuefem::adaptation
           // Before anyone else assembles on the new mesh.
           if (!carry)
             {
-              solid.dilatation_carry().clear();
+              if (carried)
+                carried->clear();
               return;
             }
           Vector<double> u_new;
           u_new = *vectors[u_k];
-          solid.dilatation_carry().finish(dof_handler,
-                                          *discretization.mapping,
-                                          discretization.cell_quadrature,
-                                          u_new,
-                                          time,
-                                          parameters.dilatation_release_steps
-                                            * time_step);
+          carried->finish(dof_handler,
+                          *discretization.mapping,
+                          discretization.cell_quadrature,
+                          u_new,
+                          time,
+                          parameters.dilatation_release_steps * time_step);
         },
         boost::signals2::at_front);
     solid.setup();

@@ -13,6 +13,7 @@
 #include <tissuefem/output/output_parameters.h>
 #include <tissuefem/problems/interface.h>
 #include <tissuefem/solid/discretization.h>
+#include <tissuefem/solid/formulations/interface.h>
 #include <tissuefem/solvers/linear_solver.h>
 #include <tissuefem/solvers/newton.h>
 #include <tissuefem/time/interface.h>
@@ -42,6 +43,7 @@ namespace tissuefem
     geometry::GeometryParameters::declare_parameters(prm);
     solid::FiniteElementParameters::declare_parameters(prm);
     materials::MaterialParameters::declare_parameters(prm);
+    solid::formulations::declare_parameters(prm);
     boundary::BoundaryParameters::declare_parameters(prm);
     time::TimeParameters::declare_parameters(prm);
     solvers::NewtonParameters::declare_parameters(prm);

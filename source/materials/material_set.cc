@@ -130,33 +130,8 @@ namespace tissuefem::materials
         "tangent at Fbar is projected, not the coupling through the cell's "
         "mean dilatation, so there it is no guarantee. 'none': the exact "
         "tangent.");
-      prm.declare_entry(
-        "Formulation",
-        "displacement",
-        Patterns::Selection(
-          "displacement|mean dilatation|nodal dilatation|edge length"),
-        "'displacement': P(F) at quadrature points; 'mean dilatation': the "
-        "F-bar form of the three-field Q1-P0 element (Simo, Taylor and "
-        "Pister 1985; de Souza Neto et al. 1996): Psi is evaluated at Fbar = "
-        "(theta/J)^(1/d) F with theta the cell mean of J, which removes "
-        "volumetric locking of nearly incompressible materials on "
-        "quadrilaterals/hexahedra (Q1-P0, Q2-P0) and on P2 "
-        "triangles/tetrahedra (P2-P0); it changes nothing on P1 simplices "
-        "(constant F), where it is refused; 'nodal dilatation': the "
-        "locking-free linear triangle/tetrahedron (P1 only): F-bar with the "
-        "dilatation averaged at the vertices over the cells around each "
-        "(Bonet and Burton 1998's average nodal pressure element), which "
-        "removes the volumetric locking of plain P1 with any model; its "
-        "Jacobian couples each cell to the cells around its vertices' "
-        "neighbours, and with a direct solver the implicit one-step methods "
-        "solve it as a system with P1's stencil and the vertices' "
-        "dilatation and pressure as extra unknowns (3 to 4 times plain "
-        "P1's cost); 'edge length': Jeffrey's "
-        "form (eqs 19-31), the element energy written through the squared "
-        "edge lengths of linear simplices (P1 triangles/tetrahedra only, "
-        "models written in C = F^T F: St Venant-Kirchhoff and the "
-        "transversely isotropic one; the fibre direction is taken as "
-        "the normalized cell mean, one per element).");
+      // 'Formulation' is declared with the formulations that may be
+      // chosen (solid/formulations/interface.h).
       MaterialRegistry<3>::instance().declare_parameters(prm);
     }
     prm.leave_subsection();
@@ -244,11 +219,9 @@ namespace tissuefem::materials
               ElasticConstants::from_young_poisson(E[i], nu[i]));
           }
       }
-    tangent_method               = parse_tangent_method(prm.get("Tangent"));
-    fibre_direction              = prm.get("Fibre direction");
-    edge_length_formulation      = prm.get("Formulation") == "edge length";
-    mean_dilatation_formulation  = prm.get("Formulation") == "mean dilatation";
-    nodal_dilatation_formulation = prm.get("Formulation") == "nodal dilatation";
+    tangent_method  = parse_tangent_method(prm.get("Tangent"));
+    fibre_direction = prm.get("Fibre direction");
+    formulation     = prm.get("Formulation");
     project_tangent = prm.get("Tangent projection") == "positive definite";
     prm.leave_subsection();
   }
@@ -262,9 +235,7 @@ namespace tissuefem::materials
           leading_entries(parameters.fibre_direction, ';', dim),
           dim,
           "Materials/Fibre direction"))
-      , edge_length(parameters.edge_length_formulation)
-      , mean_dilatation(parameters.mean_dilatation_formulation)
-      , nodal_dilatation(parameters.nodal_dilatation_formulation)
+      , formulation_name(parameters.formulation)
       , project(parameters.project_tangent)
   {
     for (unsigned int i = 0; i < parameters.model_names.size(); ++i)
@@ -274,17 +245,13 @@ namespace tissuefem::materials
                                          : parameters.material_ids[i];
         Entry                    entry{MaterialRegistry<dim>::instance().create(
                       parameters.model_names[i], parameters.constants[i], prm),
-                    parameters.densities[i]};
+                    parameters.densities[i],
+                    parameters.model_names[i]};
         require(method != TangentMethod::hand_coded
                   || entry.model->has_hand_coded_tangent(),
                 "Materials/Tangent",
                 "'hand coded' is not available for model '"
                   + parameters.model_names[i] + "'");
-        require(!edge_length || entry.model->has_edge_length_form(),
-                "Materials/Formulation",
-                "'edge length' is not available for model '"
-                  + parameters.model_names[i]
-                  + "' (it is not written in C = F^T F)");
         entries[key] = std::move(entry);
       }
   }

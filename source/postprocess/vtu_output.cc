@@ -95,8 +95,13 @@ namespace tissuefem::postprocess
                    DataComponentInterpretation::component_is_part_of_vector);
 
     Vector<float> jacobian, von_mises;
-    solid::cell_fields(
-      d, solid.get_materials(), solid.fibres(), u, jacobian, von_mises);
+    solid::cell_fields(d,
+                       solid.get_materials(),
+                       solid.fibres(),
+                       solid.deformation(u).get(),
+                       u,
+                       jacobian,
+                       von_mises);
     const bool finite
       = Utilities::MPI::min((all_finite(jacobian) && all_finite(von_mises)) ? 1
                                                                             : 0,

@@ -12,7 +12,7 @@ namespace tissuefem::problems
       : materials(materials)
   {
     cache.build(discretization, false);
-    fibres.build(discretization, materials);
+    fibres.build(discretization, materials, false);
     DynamicSparsityPattern dsp(discretization.n_dofs());
     DoFTools::make_sparsity_pattern(discretization.dof_handler, dsp);
     sparsity.copy_from(dsp);

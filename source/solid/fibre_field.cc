@@ -7,7 +7,8 @@ namespace tissuefem::solid
   template <int dim>
   void
   FibreField<dim>::build(const Discretization<dim>         &discretization,
-                         const materials::MaterialSet<dim> &materials)
+                         const materials::MaterialSet<dim> &materials,
+                         const bool                         per_cell)
   {
     directions.clear();
     if (!materials.any_uses_fibres())
@@ -36,7 +37,7 @@ namespace tissuefem::solid
           // (normalized mean) direction at every quadrature point so that
           // energies and stresses reported afterwards belong to the problem
           // solved.
-          if (materials.edge_length_formulation() && mean.norm() > 0)
+          if (per_cell && mean.norm() > 0)
             for (unsigned int q = 0; q < n_q; ++q)
               directions[first + q] = mean / mean.norm();
         }

@@ -41,15 +41,11 @@ namespace tissuefem::solid
 
   template <int dim>
   bool
-  LinearSimplexKernel<dim>::applies(
-    const Discretization<dim>         &discretization,
-    const materials::MaterialSet<dim> &materials,
-    const CellCache<dim>              &cache)
+  LinearSimplexKernel<dim>::applies(const Discretization<dim> &discretization,
+                                    const CellCache<dim>      &cache)
   {
     if (dim < 2 || !discretization.simplex || discretization.fe->degree != 1
-        || materials.edge_length_formulation()
-        || materials.mean_dilatation_formulation() || cache.n_scalar != n_nodes
-        || cache.n_compon != dim)
+        || cache.n_scalar != n_nodes || cache.n_compon != dim)
       return false;
     // The closed-form mass equals the general path's only where its
     // quadrature integrates phi_k phi_l exactly: compare on the reference

@@ -11,35 +11,14 @@ namespace tissuefem::solid
 
 
   template <int dim>
-  double
-  stored_energy(const Discretization<dim>         &discretization,
-                const materials::MaterialSet<dim> &materials,
-                const FibreField<dim>             &fibres,
-                const VectorType                  &u)
-  {
-    double energy = 0;
-    for_each_deformation_gradient(
-      discretization,
-      u,
-      [&](
-        const auto &cell, unsigned int q, const Tensor<2, dim> &F, double JxW) {
-        energy += materials.material(cell->material_id())
-                    .energy_density(F, fibres.at(cell->active_cell_index(), q))
-                  * JxW;
-      },
-      &materials);
-    return Utilities::MPI::sum(energy, parallel_tools::communicator());
-  }
-
-
-  template <int dim>
   void
-  cell_fields(const Discretization<dim>         &discretization,
-              const materials::MaterialSet<dim> &materials,
-              const FibreField<dim>             &fibres,
-              const VectorType                  &u,
-              Vector<float>                     &jacobian,
-              Vector<float>                     &von_mises)
+  cell_fields(const Discretization<dim>            &discretization,
+              const materials::MaterialSet<dim>    &materials,
+              const FibreField<dim>                &fibres,
+              const formulations::Deformation<dim> *deformation,
+              const VectorType                     &u,
+              Vector<float>                        &jacobian,
+              Vector<float>                        &von_mises)
   {
     const auto  &triangulation = discretization.dof_handler.get_triangulation();
     const double n_q           = discretization.cell_quadrature.size();
@@ -68,7 +47,7 @@ namespace tissuefem::solid
                        : std::sqrt(1.5 * scalar_product(deviator, deviator)))
              / n_q;
       },
-      &materials);
+      deformation);
   }
 
 
@@ -151,13 +130,10 @@ namespace tissuefem::solid
   }
 
 #define TISSUEFEM_INSTANTIATE(dim)                                           \
-  template double stored_energy<dim>(const Discretization<dim> &,            \
-                                     const materials::MaterialSet<dim> &,    \
-                                     const FibreField<dim> &,                \
-                                     const VectorType &);                    \
   template void   cell_fields<dim>(const Discretization<dim> &,              \
                                  const materials::MaterialSet<dim> &,      \
                                  const FibreField<dim> &,                  \
+                                 const formulations::Deformation<dim> *,   \
                                  const VectorType &,                       \
                                  Vector<float> &,                          \
                                  Vector<float> &);                         \

@@ -8,9 +8,7 @@
 
 #include <tissuefem/materials/kinematics.h>
 #include <tissuefem/materials/tangent_projection.h>
-#include <tissuefem/solid/edge_length_element.h>
 #include <tissuefem/solid/matrix_rows.h>
-#include <tissuefem/solid/mean_dilatation.h>
 #include <tissuefem/solid/quantities.h>
 #include <tissuefem/solid/solid.h>
 
@@ -38,23 +36,8 @@ namespace tissuefem::solid
       , body_force_present(!boundary_conditions.body_force_is_zero)
   {
     no_constraints.close();
-    if (materials.edge_length_formulation())
-      require(discretization.simplex && discretization.fe->degree == 1,
-              "Materials/Formulation",
-              "'edge length' needs linear simplices (Geometry/Cell type = "
-              "simplex or a simplex mesh file, Polynomial degree = 1)");
-    if (materials.nodal_dilatation_formulation())
-      require(discretization.simplex && discretization.fe->degree == 1,
-              "Materials/Formulation",
-              "'nodal dilatation' is the linear simplex's (Geometry/Cell type "
-              "= simplex or a simplex mesh file, Polynomial degree = 1); use "
-              "'mean dilatation' on hexahedra or P2");
-    if (materials.mean_dilatation_formulation())
-      require(!(discretization.simplex && discretization.fe->degree == 1),
-              "Materials/Formulation",
-              "'mean dilatation' changes nothing on linear simplices (their F "
-              "is constant per cell); use Polynomial degree = 2 (the P2-P0 "
-              "element) or a hexahedral mesh");
+    element = formulations::create<dim>(materials.formulation());
+    element->check(discretization, materials);
     setup();
   }
 
@@ -67,10 +50,6 @@ namespace tissuefem::solid
     discretization.distribute(&boundary_conditions,
                               held ? &held->vertices : nullptr);
     const auto &dof_handler = discretization.dof_handler;
-    nodal_system.reset(); // refers to nodal
-    nodal.reset();
-    if (materials.nodal_dilatation_formulation())
-      nodal = std::make_unique<NodalDilatation<dim>>(discretization);
     mass.reset();
     lumped.reset();
     groups.clear();
@@ -85,13 +64,16 @@ namespace tissuefem::solid
     // Asked for every explicit step; the mesh's extent changes only here.
     diameter
       = GridTools::diameter(discretization.dof_handler.get_triangulation());
-    fibre_field.build(discretization, materials);
+    fibre_field.build(discretization, materials, element->fibre_per_cell());
+    element->setup(context());
     discretization.initialize_vector(ghosted_u, true);
     discretization.initialize_vector(ghosted_w, true);
     build_jacobian_matrix(false);
     lean.reset();
     if (discretization.lean_kernel
-        && LinearSimplexKernel<dim>::applies(discretization, materials, cache))
+        && element->lean_kernel()
+             != formulations::Interface<dim>::LeanKernel::none
+        && LinearSimplexKernel<dim>::applies(discretization, cache))
       {
         lean = std::make_unique<LinearSimplexKernel<dim>>();
         lean->build(cache,
@@ -120,15 +102,11 @@ namespace tissuefem::solid
                                     false,
                                     Utilities::MPI::this_mpi_process(
                                       parallel_tools::communicator()));
-    nodal_system.reset();
-    if (nodal && solves_only_through_operators
-        && NodalDilatationSystem<dim>::applies(*nodal,
-                                               discretization.constraints))
-      nodal_system
-        = std::make_unique<NodalDilatationSystem<dim>>(discretization, *nodal);
-    else if (nodal && wide)
-      nodal->add_sparsity(discretization.constraints, sparsity);
-    wide_layout = nodal && !nodal_system && wide;
+    element->build_system(context(),
+                          solves_only_through_operators,
+                          wide,
+                          sparsity);
+    wide_layout = element->couples_patches() && !element->has_system() && wide;
     sparsity.compress();
     jacobian_matrix.reinit(sparsity);
     build_direct_access();
@@ -139,10 +117,11 @@ namespace tissuefem::solid
   MatrixType &
   Solid<dim>::jacobian()
   {
-    AssertThrow(!nodal_system,
-                ExcMessage("The nodal dilatation's Jacobian is kept as the "
-                           "sparser system of nodal_dilatation_system.h: "
-                           "solve with solve_jacobian()."));
+    AssertThrow(!element->has_system(),
+                ExcMessage("The formulation keeps its Jacobian as a system "
+                           "of its own (the nodal dilatation's, "
+                           "nodal_dilatation_system.h): solve with "
+                           "solve_jacobian()."));
     return jacobian_matrix;
   }
 
@@ -156,7 +135,7 @@ namespace tissuefem::solid
     if (wanted == solves_only_through_operators)
       return;
     solves_only_through_operators = wanted;
-    if (!nodal)
+    if (!element->couples_patches())
       return;
     solver.reset();
     build_jacobian_matrix(false);
@@ -172,9 +151,10 @@ namespace tissuefem::solid
                              const double           relative_tolerance,
                              const bool             from_guess)
   {
-    // The nodal system is solved directly: no guess to start from.
-    if (nodal_system)
-      nodal_system->solve(solver, x, b, refactorize);
+    // A formulation's own system is solved directly: no guess to start
+    // from.
+    if (element->has_system())
+      element->solve_system(solver, x, b, refactorize);
     else
       solver.solve(
         jacobian_matrix, x, b, refactorize, relative_tolerance, from_guess);
@@ -189,8 +169,9 @@ namespace tissuefem::solid
     const auto &d = discretization;
     std::size_t caches
       = cache.memory_consumption() + (lean ? lean->memory_consumption() : 0)
-        + memory_consumption(access.ghost_index) + access.direct.capacity() / 8
-        + memory_consumption(access.row) + memory_consumption(access.entry)
+        + element->memory_consumption() + memory_consumption(access.ghost_index)
+        + access.direct.capacity() / 8 + memory_consumption(access.row)
+        + memory_consumption(access.entry)
         + memory_consumption(access.cells_of_begin)
         + memory_consumption(access.cells_of)
         + memory_consumption(access.row_values);
@@ -434,7 +415,7 @@ namespace tissuefem::solid
     // 0 (a compressed St Venant-Kirchhoff cell) the update would miss the
     // prescribed value. Each such row is diag e_j, so that it gives d_j.
     const MatrixType &matrix
-      = nodal_system ? nodal_system->system_matrix() : jacobian_matrix;
+      = element->system_matrix() ? *element->system_matrix() : jacobian_matrix;
     for (const auto &line : lifting_constraints.get_lines())
       if (line.entries.empty()
           && discretization.locally_owned.is_element(line.index))

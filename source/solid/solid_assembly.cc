@@ -4,10 +4,6 @@
 #include <deal.II/base/work_stream.h>
 #include <deal.II/fe/fe_values.h>
 
-#include <tissuefem/materials/kinematics.h>
-#include <tissuefem/materials/tangent_projection.h>
-#include <tissuefem/solid/edge_length_element.h>
-#include <tissuefem/solid/mean_dilatation.h>
 #include <tissuefem/solid/solid.h>
 
 #include <Epetra_FEVector.h>
@@ -21,19 +17,21 @@ namespace tissuefem::solid
 {
   namespace
   {
-    /// Per-thread work space of an assembly pass.
+    /// Per-thread work space of an assembly pass: the formulation's cell
+    /// terms, the inertia coefficients, loads.
     template <int dim>
     struct Scratch
     {
-      Scratch(const Discretization<dim> &discretization, const bool faces)
-          : U(discretization.fe->base_element(0).n_dofs_per_cell())
-          , W(U.size())
-          , vertices(U.size())
-          , gradients(U.size())
+      Scratch(const Discretization<dim>          &discretization,
+              const formulations::Interface<dim> &formulation,
+              const formulations::Context<dim>   &context,
+              const bool                          faces)
+          : cell(context.cache.n_scalar, context.cache.n_q)
+          , W(context.cache.n_scalar)
           , body_force(dim)
           , traction(dim)
       {
-        resize(discretization.cell_quadrature.size());
+        cell.own = formulation.make_scratch(context);
         if (faces)
           face_values = std::make_unique<FEFaceValues<dim>>(
             *discretization.mapping,
@@ -43,14 +41,11 @@ namespace tissuefem::solid
       }
 
       Scratch(const Scratch &other)
-          : U(other.U)
+          : cell(other.cell)
           , W(other.W)
-          , vertices(other.vertices)
-          , gradients(other.gradients)
           , body_force(dim)
           , traction(dim)
       {
-        resize(other.F.size());
         if (other.face_values)
           face_values = std::make_unique<FEFaceValues<dim>>(
             other.face_values->get_mapping(),
@@ -59,26 +54,8 @@ namespace tissuefem::solid
             other.face_values->get_update_flags());
       }
 
-      void
-      resize(const unsigned int n_q)
-      {
-        F.resize(n_q);
-        P.resize(n_q);
-        A.resize(n_q);
-        b.resize(U.size());
-        C.resize(U.size());
-      }
-
-      std::vector<Tensor<1, dim>> U, W;
-      /// Mean dilatation: per-point deformation gradients, effective
-      /// stresses and tangents, and per shape function dtheta/du (b) and
-      /// sum_q w_q phi_Ftheta g (C); see mean_dilatation.h.
-      std::vector<Tensor<2, dim>>        F, P;
-      std::vector<Tensor<4, dim>>        A;
-      std::vector<Tensor<1, dim>>        b, C;
-      double                             Theta = 0;
-      std::vector<Point<dim>>            vertices;
-      std::vector<Tensor<1, dim>>        gradients;
+      formulations::CellTerms<dim>       cell;
+      std::vector<Tensor<1, dim>>        W;
       Vector<double>                     body_force, traction;
       std::unique_ptr<FEFaceValues<dim>> face_values;
     };
@@ -105,160 +82,6 @@ namespace tissuefem::solid
 
 
   template <int dim>
-  template <typename ScratchType>
-  std::pair<double, double>
-  Solid<dim>::dilatation_point_terms(const materials::Interface<dim> &material,
-                                     const unsigned int               c,
-                                     const unsigned int cell_index,
-                                     const double       theta,
-                                     const bool         linearize,
-                                     ScratchType       &s) const
-  {
-    const unsigned int n_q = cache.n_q, n_scalar = cache.n_scalar;
-    const double      *JxW    = cache.JxW(c);
-    const auto         method = materials.tangent_method();
-    double             volume = 0, Phi_theta = 0;
-    s.Theta = 0;
-    for (unsigned int k = 0; k < n_scalar; ++k)
-      s.b[k] = s.C[k] = Tensor<1, dim>();
-    MeanDilatationPoint<dim> point;
-    Tensor<2, dim>           P_bar;
-    Tensor<4, dim>           A_bar;
-    for (unsigned int q = 0; q < n_q; ++q)
-      {
-        const Tensor<2, dim> F_bar
-          = modified_deformation_gradient(s.F[q], theta);
-        const Tensor<1, dim> &a = fibre_field.at(cell_index, q);
-        if (linearize)
-          {
-            material.stress_and_tangent(F_bar, a, P_bar, A_bar, method);
-            if (materials.project_tangent())
-              materials::project_to_positive_definite(A_bar);
-            mean_dilatation_stress_and_tangent(
-              s.F[q], theta, P_bar, A_bar, point);
-            s.A[q] = point.phi_FF;
-            s.Theta += JxW[q] * point.phi_theta_theta;
-            const Tensor<2, dim> cof = cofactor(s.F[q]);
-            for (unsigned int k = 0; k < n_scalar; ++k)
-              {
-                const Tensor<1, dim> &g = cache.gradient(c, q, k);
-                s.C[k] += JxW[q] * (point.phi_F_theta * g);
-                s.b[k] += JxW[q] * (cof * g);
-              }
-          }
-        else
-          mean_dilatation_stress(s.F[q],
-                                 theta,
-                                 material.stress(F_bar, a),
-                                 point);
-        s.P[q] = point.phi_F;
-        Phi_theta += JxW[q] * point.phi_theta;
-        volume += JxW[q];
-      }
-    for (unsigned int k = 0; k < n_scalar; ++k)
-      s.b[k] /= volume;
-    return {volume, Phi_theta};
-  }
-
-
-  template <int dim>
-  template <typename ScratchType, typename CopyType>
-  void
-  Solid<dim>::mean_dilatation_cell(const materials::Interface<dim> &material,
-                                   const unsigned int               c,
-                                   const unsigned int               cell_index,
-                                   const bool                       jacobian,
-                                   const double                     carried,
-                                   ScratchType                     &s,
-                                   CopyType                        &copy) const
-  {
-    const double mean = solid::mean_dilatation(s.F, cache.JxW(c), cache.n_q);
-    if (mean <= 0)
-      {
-        copy.inverted_det = mean;
-        return;
-      }
-    // A carried dilatation scales theta by a constant: dtheta/du (b) and
-    // the pressure-like term scale with it, Theta and C do not.
-    const auto [volume, Phi_theta] = dilatation_point_terms(
-      material, c, cell_index, carried * mean, jacobian, s);
-    for (unsigned int k = 0; k < cache.n_scalar; ++k)
-      s.b[k] *= carried;
-    // The pressure-like term Phi_theta/V couples every point through
-    // theta: its first derivative is cof F_q, its second dcof/dF.
-    add_cell_pressure(carried * Phi_theta / volume, jacobian, s);
-  }
-
-
-  template <int dim>
-  template <typename ScratchType, typename CopyType>
-  void
-  Solid<dim>::three_field_cell(const materials::Interface<dim> &material,
-                               const unsigned int               c,
-                               const unsigned int               cell_index,
-                               const bool                       jacobian,
-                               ScratchType                     &s,
-                               CopyType                        &copy) const
-  {
-    const double mean = solid::mean_dilatation(s.F, cache.JxW(c), cache.n_q);
-    // The first assembly of a step sets the unknowns: the carried
-    // dilatation of a changed cell (the old mesh's, so that its pressure
-    // is the old one and the momentum rows start balanced), else the
-    // cell's own; the pressure consistent with it.
-    if (three_field.initializing() && mean > 0)
-      three_field.theta(c) = mean * carry.factor(cell_index, three_field_start);
-    const double theta = three_field.theta(c);
-    if (mean <= 0 || theta <= 0)
-      {
-        copy.inverted_det = std::min(mean, theta);
-        return;
-      }
-    // The cell's b, C and Theta are those of the last Jacobian, so that
-    // modified Newton ('Jacobian reuse') condenses with the matrix it
-    // solves with.
-    const bool linearize = jacobian || !three_field.linearized(c);
-    const auto [volume, Phi_theta]
-      = dilatation_point_terms(material, c, cell_index, theta, linearize, s);
-    if (three_field.initializing())
-      three_field.pressure(c) = Phi_theta / volume;
-    const double pressure = three_field.pressure(c);
-    add_cell_pressure(pressure, jacobian, s);
-    if (linearize)
-      {
-        std::vector<double> b(cache.n_dofs), C(cache.n_dofs);
-        for (unsigned int k = 0; k < cache.n_scalar; ++k)
-          for (unsigned int a = 0; a < dim; ++a)
-            {
-              b[cache.local_index[k * dim + a]] = s.b[k][a];
-              C[cache.local_index[k * dim + a]] = s.C[k][a];
-            }
-        three_field.set_linearization(
-          c, std::move(b), std::move(C), s.Theta, volume);
-      }
-    three_field.add_condensed_rows(c,
-                                   mean - theta,
-                                   Phi_theta - pressure * volume,
-                                   copy.rhs);
-  }
-
-
-  template <int dim>
-  template <typename ScratchType>
-  void
-  Solid<dim>::add_cell_pressure(const double pressure,
-                                const bool   jacobian,
-                                ScratchType &s) const
-  {
-    for (unsigned int q = 0; q < cache.n_q; ++q)
-      {
-        s.P[q] += pressure * cofactor(s.F[q]);
-        if (jacobian)
-          materials::add_cofactor_derivative(s.F[q], pressure, s.A[q]);
-      }
-  }
-
-
-  template <int dim>
   template <typename ScratchType, typename CopyType>
   void
   Solid<dim>::start_cell(const Request     &request,
@@ -275,6 +98,15 @@ namespace tissuefem::solid
     copy.rhs          = 0;
     if (request.jacobian)
       copy.matrix = 0;
+    auto &cell        = s.cell;
+    cell.c            = c;
+    cell.index        = copy.cell_index;
+    cell.material     = &materials.material(cache.cells()[c]->material_id());
+    cell.jacobian     = request.jacobian;
+    cell.carry_time   = request.carry ? &request.time : nullptr;
+    cell.rhs          = &copy.rhs;
+    cell.matrix       = &copy.matrix;
+    cell.inverted_det = 1;
     // Raw local data of the ghosted arguments (see DirectAccess).
     const double *u_values
       = request.internal ? request.u->trilinos_vector()[0] : nullptr;
@@ -285,7 +117,7 @@ namespace tissuefem::solid
         {
           const unsigned int i = cache.local_index[k * dim + a];
           const int          g = access.ghost_index[c * n + i];
-          s.U[k][a]            = u_values ? u_values[g] : 0.;
+          cell.U[k][a]         = u_values ? u_values[g] : 0.;
           s.W[k][a]            = w_values ? w_values[g] : 0.;
         }
   }
@@ -294,67 +126,21 @@ namespace tissuefem::solid
   template <int dim>
   template <typename ScratchType, typename CopyType>
   void
-  Solid<dim>::cell_deformation(const Request                   &request,
-                               const materials::Interface<dim> &material,
-                               const unsigned int               c,
-                               ScratchType                     &s,
-                               CopyType                        &copy) const
-  {
-    // F at every point first. In the displacement formulation an inverted
-    // point (where the model cannot represent it) discards the whole
-    // cell, and the report gives the cell's smallest det F; the mean
-    // dilatation element checks its points itself.
-    const bool mean_dilatation = materials.mean_dilatation_formulation();
-    for (unsigned int q = 0; q < cache.n_q; ++q)
-      {
-        Tensor<2, dim> &F = s.F[q];
-        F                 = unit_symmetric_tensor<dim>();
-        for (unsigned int k = 0; k < cache.n_scalar; ++k)
-          F += outer_product(s.U[k], cache.gradient(c, q, k));
-        if (mean_dilatation)
-          continue;
-        const double det = determinant(F);
-        if (det <= 0 && !material.admits_inversion())
-          copy.inverted_det = std::min(copy.inverted_det, det);
-      }
-    if (!mean_dilatation)
-      return;
-    if (three_field.active())
-      three_field_cell(material, c, copy.cell_index, request.jacobian, s, copy);
-    else
-      mean_dilatation_cell(material,
-                           c,
-                           copy.cell_index,
-                           request.jacobian,
-                           request.carry
-                             ? carry.factor(copy.cell_index, request.time)
-                             : 1.,
-                           s,
-                           copy);
-  }
-
-
-  template <int dim>
-  template <typename ScratchType, typename CopyType, typename StressAt>
-  void
-  Solid<dim>::add_point_terms_with(const Request     &request,
-                                   const unsigned int c,
-                                   const double       rho,
-                                   const bool         elastic,
-                                   const StressAt    &stress_at,
-                                   ScratchType       &s,
-                                   CopyType          &copy) const
+  Solid<dim>::add_point_terms(const Request     &request,
+                              const unsigned int c,
+                              const double       rho,
+                              const bool         elastic,
+                              ScratchType       &s,
+                              CopyType          &copy) const
   {
     const unsigned int n_scalar      = cache.n_scalar;
     const double      *JxW           = cache.JxW(c);
     const double       mass_jacobian = request.mass_jacobian_coefficient * rho;
-    Tensor<2, dim>     P;
-    Tensor<4, dim>     A;
     Tensor<3, dim>     B;
     for (unsigned int q = 0; q < cache.n_q; ++q)
       {
-        if (elastic)
-          stress_at(q, P, A);
+        const Tensor<2, dim> &P = s.cell.P[q];
+        const Tensor<4, dim> &A = s.cell.A[q];
         // Loads per unit reference volume, with the inertial term rho w
         // acting like a load.
         Tensor<1, dim> load;
@@ -416,114 +202,6 @@ namespace tissuefem::solid
               }
           }
       }
-  }
-
-
-  template <int dim>
-  template <typename ScratchType, typename CopyType>
-  void
-  Solid<dim>::add_point_terms(const Request                   &request,
-                              const materials::Interface<dim> &material,
-                              const unsigned int               c,
-                              const double                     rho,
-                              const bool                       elastic,
-                              ScratchType                     &s,
-                              CopyType                        &copy) const
-  {
-    const auto method  = materials.tangent_method();
-    const bool project = materials.project_tangent();
-    // The formulation's stress (and tangent) at point q: the mean
-    // dilatation's were computed for the whole cell, the displacement
-    // formulation's come from F at the point.
-    if (materials.mean_dilatation_formulation())
-      add_point_terms_with(
-        request,
-        c,
-        rho,
-        elastic,
-        [&](const unsigned int q, Tensor<2, dim> &P, Tensor<4, dim> &A) {
-          P = s.P[q];
-          if (request.jacobian)
-            A = s.A[q];
-        },
-        s,
-        copy);
-    else
-      add_point_terms_with(
-        request,
-        c,
-        rho,
-        elastic,
-        [&](const unsigned int q, Tensor<2, dim> &P, Tensor<4, dim> &A) {
-          const Tensor<1, dim> &a = fibre_field.at(copy.cell_index, q);
-          if (!request.jacobian)
-            P = material.stress(s.F[q], a);
-          else
-            {
-              material.stress_and_tangent(s.F[q], a, P, A, method);
-              if (project)
-                materials::project_to_positive_definite(A);
-            }
-        },
-        s,
-        copy);
-  }
-
-
-  template <int dim>
-  template <typename ScratchType, typename CopyType>
-  void
-  Solid<dim>::add_mean_dilatation_coupling(const ScratchType &s,
-                                           CopyType          &copy) const
-  {
-    // The rank-two terms that couple every point through theta
-    // (mean_dilatation.h).
-    const unsigned int n_scalar = cache.n_scalar;
-    for (unsigned int k = 0; k < n_scalar; ++k)
-      for (unsigned int a = 0; a < dim; ++a)
-        {
-          const unsigned int i = cache.local_index[k * dim + a];
-          for (unsigned int l = 0; l < n_scalar; ++l)
-            for (unsigned int b = 0; b < dim; ++b)
-              {
-                const unsigned int j = cache.local_index[l * dim + b];
-                if (j >= i)
-                  copy.matrix(i, j) += s.C[k][a] * s.b[l][b]
-                                       + s.b[k][a] * s.C[l][b]
-                                       + s.Theta * s.b[k][a] * s.b[l][b];
-              }
-        }
-  }
-
-
-  template <int dim>
-  template <typename ScratchType, typename CopyType>
-  void
-  Solid<dim>::add_edge_length_cell(const materials::Interface<dim> &material,
-                                   const unsigned int               c,
-                                   const bool                       jacobian,
-                                   ScratchType                     &s,
-                                   CopyType                        &copy) const
-  {
-    const double *JxW    = cache.JxW(c);
-    double        volume = 0;
-    for (unsigned int q = 0; q < cache.n_q; ++q)
-      volume += JxW[q];
-    const auto &cell = cache.cells()[c];
-    for (unsigned int k = 0; k < cache.n_scalar; ++k)
-      {
-        s.vertices[k]  = cell->vertex(k);
-        s.gradients[k] = cache.gradient(c, 0, k);
-      }
-    add_edge_length_element(s.vertices,
-                            s.gradients,
-                            volume,
-                            s.U,
-                            cache.local_index,
-                            material,
-                            fibre_field.at(copy.cell_index, 0),
-                            copy.rhs,
-                            jacobian ? &copy.matrix : nullptr);
   }
 
 
@@ -602,17 +280,13 @@ namespace tissuefem::solid
   void
   Solid<dim>::assemble(const Request &request, VectorType &residual)
   {
-    if (nodal && request.jacobian)
-      prepare_nodal_jacobian();
+    if (request.jacobian)
+      prepare_jacobian();
     if (uses_lean_kernel(request))
       {
         assemble_lean(request, residual);
         return;
       }
-    const bool edge_length = materials.edge_length_formulation();
-    // The nodal dilatation's elastic part couples patches of cells: it is
-    // added after the cells' loads and inertia.
-    const bool patches = nodal != nullptr;
     const bool neumann
       = request.external && !boundary_conditions.neumann.empty();
     boundary_conditions.set_time(request.time);
@@ -620,29 +294,27 @@ namespace tissuefem::solid
     if (request.jacobian)
       jacobian_matrix = 0;
 
-    // One cell: its elastic part (stresses at the points, or the
-    // edge-length element), loads and inertia at the points, tractions on
-    // its boundary faces. A cell with an inverted point where the model
-    // cannot represent it contributes nothing; it is reported.
+    // One cell: its elastic part (the formulation's stresses at the
+    // points, or its own rows), loads and inertia at the points, tractions
+    // on its boundary faces. A cell whose state the formulation or model
+    // cannot represent (an inverted point) contributes nothing; it is
+    // reported. Terms that couple patches of cells follow the loop.
+    const formulations::Context<dim> context = this->context();
     auto worker = [&](const std::vector<unsigned int>::const_iterator &it,
                       Scratch<dim>                                    &s,
                       Copy                                            &copy) {
       const unsigned int c = *it;
       start_cell(request, c, s, copy);
-      const auto &cell     = cache.cells()[c];
-      const auto &material = materials.material(cell->material_id());
-      if (request.internal && !patches)
-        cell_deformation(request, material, c, s, copy);
+      const auto &cell = cache.cells()[c];
+      const bool  elastic
+        = request.internal && element->cell_terms(context, s.cell);
+      copy.inverted_det = s.cell.inverted_det;
       if (copy.inverted_det <= 0)
         return;
-      const bool   elastic = request.internal && !edge_length && !patches;
-      const double rho     = materials.density(cell->material_id());
-      add_point_terms(request, material, c, rho, elastic, s, copy);
-      if (elastic && request.jacobian
-          && materials.mean_dilatation_formulation())
-        add_mean_dilatation_coupling(s, copy);
-      if (request.internal && edge_length)
-        add_edge_length_cell(material, c, request.jacobian, s, copy);
+      add_point_terms(
+        request, c, materials.density(cell->material_id()), elastic, s, copy);
+      if (request.internal)
+        element->add_cell_rows(context, s.cell);
       if (neumann && cell->at_boundary())
         add_tractions(c, s, copy);
       if (request.jacobian)
@@ -670,71 +342,57 @@ namespace tissuefem::solid
                     indices.cend(),
                     worker,
                     copier,
-                    Scratch<dim>(discretization, neumann),
+                    Scratch<dim>(discretization, *element, context, neumann),
                     Copy(cache.n_dofs));
-    add_nodal_elastic(request, residual, inverted);
+    add_patch_terms(request, residual, inverted);
     add_contributions(request, residual);
 
     residual.compress(VectorOperation::add);
     if (request.jacobian)
       jacobian_matrix.compress(VectorOperation::add);
-    if (request.jacobian && nodal_system)
-      nodal_system->finish(&jacobian_matrix, residual);
-    if (three_field.active() && request.internal)
-      three_field.initialized();
+    if (request.jacobian)
+      element->finish_system(&jacobian_matrix, residual);
+    if (request.internal)
+      element->assembled();
     report_inversions(inverted);
   }
 
 
   template <int dim>
   void
-  Solid<dim>::prepare_nodal_jacobian()
+  Solid<dim>::prepare_jacobian()
   {
-    if (!nodal_system && !wide_layout)
+    if (element->couples_patches() && !element->has_system() && !wide_layout)
       build_jacobian_matrix(true);
-    if (nodal_system)
-      nodal_system->clear();
+    element->clear_system();
   }
 
 
   template <int dim>
   void
-  Solid<dim>::add_nodal_elastic(
-    const Request                                             &request,
-    VectorType                                                &residual,
-    std::vector<std::tuple<unsigned int, double, Point<dim>>> &inverted,
-    const bool                                                 loads)
+  Solid<dim>::add_patch_terms(const Request               &request,
+                              VectorType                  &residual,
+                              formulations::Inverted<dim> &inverted,
+                              const bool                   loads)
   {
-    if (!nodal || !request.internal)
+    if (!element->couples_patches() || !request.internal)
       return;
-    Assert(!loads || (nodal_system && request.jacobian), ExcInternalError());
-    typename NodalDilatationSystem<dim>::Loads cell_loads;
+    formulations::PatchRequest<dim> patch;
+    patch.u             = request.u;
+    patch.jacobian      = request.jacobian;
+    patch.rows          = request.rows;
+    patch.inhomogeneous = request.inhomogeneous;
+    patch.loads         = loads;
     if (loads)
       {
-        cell_loads.inertia          = request.inertia;
-        cell_loads.mass_coefficient = request.mass_jacobian_coefficient;
+        patch.inertia          = request.inertia;
+        patch.mass_coefficient = request.mass_jacobian_coefficient;
         if (request.external)
-          cell_loads.gravity
+          patch.gravity
             = boundary_conditions.load_factor * boundary_conditions.gravity;
       }
-    const auto undefined
-      = nodal_system ? nodal_system->assemble(*request.u,
-                                              materials,
-                                              fibre_field,
-                                              *request.rows,
-                                              request.inhomogeneous,
-                                              request.jacobian,
-                                              residual,
-                                              loads ? &cell_loads : nullptr)
-                     : nodal->assemble(*request.u,
-                                       materials,
-                                       fibre_field,
-                                       request.jacobian,
-                                       *request.rows,
-                                       request.inhomogeneous,
-                                       jacobian_matrix,
-                                       residual);
-    inverted.insert(inverted.end(), undefined.begin(), undefined.end());
+    element->add_patch_terms(
+      context(), patch, jacobian_matrix, residual, inverted);
   }
 
 
@@ -801,15 +459,7 @@ namespace tissuefem::solid
       }
     if (cells.size() > 4)
       message << ", ...";
-    if (materials.mean_dilatation_formulation())
-      message << "; the mean dilatation formulation needs det F > 0 at every "
-                 "quadrature point (its Fbar = (theta/J)^(1/d) F); use "
-                 "'Formulation = displacement' with an invertible model for "
-                 "scenes that invert elements";
-    else
-      message << "; the material model is undefined for det F <= 0 (use "
-              << "'invertible neo-Hookean' or 'robust neo-Hookean' for scenes "
-                 "that invert elements)";
+    message << "; " << element->inversion_advice();
     throw InvertedElementError(message.str());
   }
 
@@ -817,11 +467,10 @@ namespace tissuefem::solid
 #define TISSUEFEM_INSTANTIATE(dim)                                            \
   template void Solid<dim>::assemble(const Request &, VectorType &);          \
   template void Solid<dim>::add_contributions(const Request &, VectorType &); \
-  template void Solid<dim>::add_nodal_elastic(                                \
-    const Request &,                                                          \
-    VectorType &,                                                             \
-    std::vector<std::tuple<unsigned int, double, Point<dim>>> &,              \
-    const bool);                                                              \
+  template void Solid<dim>::add_patch_terms(const Request &,                  \
+                                            VectorType &,                     \
+                                            formulations::Inverted<dim> &,    \
+                                            const bool);                      \
   template void Solid<dim>::report_inversions(                                \
     const std::vector<std::tuple<unsigned int, double, Point<dim>>> &) const;
 

@@ -28,13 +28,14 @@ namespace tissuefem::solid
   {
     const unsigned int n = cache.n_dofs;
     discretization.initialize_assembly_vector(residual);
-    // The nodal dilatation's Jacobians into its sparser system take the
-    // inertia and gravity into the same cell blocks as the elastic part
-    // (add_nodal_elastic()): the kernel has nothing left to do, and the
-    // displacement matrix only the force contributions' terms (without
-    // any, it is neither cleared nor added: 0.8 ms a step on SOFA's liver).
-    const bool loads_in_system
-      = nodal_system && request.jacobian && request.internal && !request.cells;
+    // Jacobians into a formulation's own system (the nodal dilatation's)
+    // take the inertia and gravity into the same cell blocks as the
+    // elastic part (add_patch_terms()): the kernel has nothing left to do,
+    // and the displacement matrix only the force contributions' terms
+    // (without any, it is neither cleared nor added: 0.8 ms a step on
+    // SOFA's liver).
+    const bool loads_in_system = element->has_system() && request.jacobian
+                                 && request.internal && !request.cells;
     const bool uu_block
       = request.jacobian
         && !(loads_in_system
@@ -43,9 +44,12 @@ namespace tissuefem::solid
       jacobian_matrix = 0;
 
     typename LinearSimplexKernel<dim>::Input input;
-    // The nodal dilatation's elastic part is not the cells' own: the
-    // kernel gives its inertia and loads, add_nodal_elastic() the rest.
-    const bool elastic = request.internal && !nodal;
+    // Where the formulation's elastic part is not the cells' own (the
+    // nodal dilatation's patches), the kernel gives the inertia and loads,
+    // add_patch_terms() the rest.
+    const bool elastic = request.internal
+                         && element->lean_kernel()
+                              == formulations::Interface<dim>::LeanKernel::all;
     input.u = request.u && elastic ? request.u->trilinos_vector()[0] : nullptr;
     input.w = request.inertia ? request.inertia->trilinos_vector()[0] : nullptr;
     input.mass_jacobian_coefficient = request.mass_jacobian_coefficient;
@@ -149,14 +153,14 @@ namespace tissuefem::solid
         else
           rows.distribute_local_to_global(rhs, dofs, residual);
       }
-    add_nodal_elastic(request, residual, report, loads_in_system);
+    add_patch_terms(request, residual, report, loads_in_system);
     add_contributions(request, residual);
 
     residual.compress(VectorOperation::add);
     if (uu_block)
       jacobian_matrix.compress(VectorOperation::add);
-    if (request.jacobian && nodal_system)
-      nodal_system->finish(uu_block ? &jacobian_matrix : nullptr, residual);
+    if (request.jacobian)
+      element->finish_system(uu_block ? &jacobian_matrix : nullptr, residual);
     report_inversions(report);
   }
 

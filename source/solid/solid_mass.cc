@@ -171,21 +171,25 @@ namespace tissuefem::solid
     const unsigned int n_q = cache.n_q, n_scalar = cache.n_scalar;
     const unsigned int n      = cache.n_dofs;
     const double      *values = ghosted.trilinos_vector()[0];
-    if (lean && !nodal)
+    if (lean
+        && element->lean_kernel()
+             == formulations::Interface<dim>::LeanKernel::all)
       return Utilities::MPI::sum(lean->stored_energy(values),
                                  parallel_tools::communicator());
     double                      energy = 0;
     std::vector<Tensor<2, dim>> F(n_q);
-    const std::vector<double>   theta
-      = nodal ? nodal->dilatations(ghosted) : std::vector<double>();
+    const auto                  deformation
+      = element->deformation(context(), ghosted, carry_time);
     for (unsigned int c = 0; c < cache.cells().size(); ++c)
       {
         const auto &cell     = cache.cells()[c];
         const auto &material = materials.material(cell->material_id());
-        // The nodal dilatation's element is the linear simplex, where F is
-        // constant: one evaluation per cell unless the fibre varies at the
-        // points (the line search asks for this energy at every trial).
-        const unsigned int n_e = nodal && !material.uses_fibres() ? 1 : n_q;
+        // Where the formulation's F is constant per cell (the nodal
+        // dilatation's linear simplex): one evaluation per cell unless the
+        // fibre varies at the points (the line search asks for this energy
+        // at every trial).
+        const unsigned int n_e
+          = element->constant_gradient() && !material.uses_fibres() ? 1 : n_q;
         for (unsigned int q = 0; q < n_e; ++q)
           {
             F[q] = unit_symmetric_tensor<dim>();
@@ -202,22 +206,11 @@ namespace tissuefem::solid
                   }
               }
           }
-        // No Fbar where J and Jbar differ in sign: inadmissible.
-        if (nodal
-            && !apply_dilatation(F, n_e, theta[cell->active_cell_index()]))
+        // The formulation's F (Fbar); where it is not defined (a cell
+        // inverted, J and Jbar of different sign) the state is
+        // inadmissible.
+        if (!deformation->apply(cell, F, cache.JxW(c), n_e))
           {
-            energy = std::numeric_limits<double>::infinity();
-            break;
-          }
-        if (materials.mean_dilatation_formulation()
-            && !apply_mean_dilatation(
-              F,
-              cache.JxW(c),
-              n_q,
-              carry_time ? carry.factor(cell->active_cell_index(), *carry_time)
-                         : 1.))
-          {
-            // No Fbar where a cell is inverted: an inadmissible state.
             energy = std::numeric_limits<double>::infinity();
             break;
           }

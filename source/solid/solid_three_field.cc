@@ -1,5 +1,6 @@
-// The Solid's side of the three-field mean dilatation element: the
-// IterationUnknowns an implicit step drives (ThreeFieldDilatation).
+// The Solid's side of a formulation's own unknowns (IterationUnknowns; the
+// three-field mean dilatation element's, ThreeFieldDilatation): an implicit
+// step drives them through the solid, which forwards to the formulation.
 #include <tissuefem/solid/solid.h>
 
 namespace tissuefem::solid
@@ -8,9 +9,7 @@ namespace tissuefem::solid
   IterationUnknowns *
   Solid<dim>::iteration_unknowns()
   {
-    // Only the mean dilatation element has cell unknowns (the nodal
-    // dilatation of P1 simplices is another formulation).
-    return materials.mean_dilatation_formulation() ? this : nullptr;
+    return element->iteration_unknowns() ? this : nullptr;
   }
 
 
@@ -18,8 +17,7 @@ namespace tissuefem::solid
   void
   Solid<dim>::begin_iterations(const double start_time)
   {
-    three_field.begin(cache.cells().size());
-    three_field_start = start_time;
+    element->iteration_unknowns()->begin_iterations(start_time);
   }
 
 
@@ -27,17 +25,12 @@ namespace tissuefem::solid
   void
   Solid<dim>::predict_update(const VectorType &du)
   {
+    // The formulation reads the increment cell by cell: ghosted, with its
+    // hanging values set.
     VectorType ghosted_du;
     discretization.initialize_vector(ghosted_du, true);
     make_ghosted(du, ghosted_du);
-    std::vector<double> du_cell(cache.n_dofs);
-    for (unsigned int c = 0; c < cache.cells().size(); ++c)
-      {
-        const types::global_dof_index *dofs = cache.dofs(c);
-        for (unsigned int i = 0; i < cache.n_dofs; ++i)
-          du_cell[i] = ghosted_du[dofs[i]];
-        three_field.predict(c, du_cell);
-      }
+    element->iteration_unknowns()->predict_update(ghosted_du);
   }
 
 
@@ -45,7 +38,7 @@ namespace tissuefem::solid
   void
   Solid<dim>::set_step_length(const double alpha)
   {
-    three_field.trial(alpha);
+    element->iteration_unknowns()->set_step_length(alpha);
   }
 
 
@@ -53,12 +46,7 @@ namespace tissuefem::solid
   void
   Solid<dim>::end_iterations(const bool converged)
   {
-    three_field.end();
-    // A carried dilatation is the first iterate of the step after a mesh
-    // change; once a step has converged on the new mesh it has served
-    // (a retried step starts from it again).
-    if (converged)
-      carry.clear();
+    element->iteration_unknowns()->end_iterations(converged);
   }
 
 

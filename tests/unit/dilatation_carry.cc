@@ -92,7 +92,7 @@ namespace
         const unsigned int i = cell->active_cell_index();
         result.emplace(
           cell->id(),
-          Carried{theta[i].first * solid.dilatation_carry().factor(i, time),
+          Carried{theta[i].first * solid.dilatation_carry()->factor(i, time),
                   theta[i].second,
                   cell->level() > 0 ? cell->parent()->id() : cell->id()});
       }
@@ -249,7 +249,7 @@ namespace
             solid.implicit_residual(
               state.u, state.u, 0., change, residual, false);
             const double with = residual.l2_norm();
-            solid.dilatation_carry().clear();
+            solid.dilatation_carry()->clear();
             solid.implicit_residual(
               state.u, state.u, 0., change, residual, false);
             const double without = residual.l2_norm();
@@ -266,8 +266,8 @@ namespace
                            "the changes kept, refined and coarsened cells");
     bool released = true;
     for (unsigned int i = 0; i < scene.triangulation.n_active_cells(); ++i)
-      released
-        = released && solid.dilatation_carry().factor(i, change + release) == 1;
+      released = released
+                 && solid.dilatation_carry()->factor(i, change + release) == 1;
     tissuefem_tests::check(released,
                            "after the release every cell has its own "
                            "dilatation");

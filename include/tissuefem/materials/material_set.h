@@ -8,6 +8,8 @@
 
 #include <map>
 #include <memory>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace tissuefem::materials
@@ -31,10 +33,9 @@ namespace tissuefem::materials
     std::vector<double>           densities;
     TangentMethod                 tangent_method;
     std::string                   fibre_direction;
-    bool                          edge_length_formulation;
-    bool                          mean_dilatation_formulation;
-    bool                          nodal_dilatation_formulation;
-    bool                          project_tangent;
+    /// 'Formulation' (declared by solid/formulations/interface.h).
+    std::string formulation;
+    bool        project_tangent;
   };
 
   template <int dim>
@@ -72,27 +73,22 @@ namespace tissuefem::materials
     Tensor<1, dim>
     fibre_direction(const Point<dim> &X) const;
 
-    /// Whether elements use Jeffrey's edge-length formulation.
-    bool
-    edge_length_formulation() const
+    /// The element formulation's registered name ('Materials/Formulation':
+    /// solid/formulations/).
+    const std::string &
+    formulation() const
     {
-      return edge_length;
+      return formulation_name;
     }
 
-    /// Whether elements evaluate the energy at the F-bar of the cell mean
-    /// dilatation (solid/mean_dilatation.h).
-    bool
-    mean_dilatation_formulation() const
+    /// Every model of the set, with its registered name.
+    std::vector<std::pair<std::string, const Interface<dim> *>>
+    models() const
     {
-      return mean_dilatation;
-    }
-
-    /// Whether linear simplices use the nodally averaged dilatation
-    /// (solid/nodal_dilatation.h).
-    bool
-    nodal_dilatation_formulation() const
-    {
-      return nodal_dilatation;
+      std::vector<std::pair<std::string, const Interface<dim> *>> result;
+      for (const auto &[id, entry] : entries)
+        result.emplace_back(entry.name, entry.model.get());
+      return result;
     }
 
     /// Whether tangents are projected to positive definite ones
@@ -108,15 +104,14 @@ namespace tissuefem::materials
     {
       std::unique_ptr<Interface<dim>> model;
       double                          density;
+      std::string                     name;
     };
     /// Either keyed by material id, or a single entry for all cells (key
     /// numbers::invalid_material_id).
     std::map<types::material_id, Entry>  entries;
     TangentMethod                        method;
     std::unique_ptr<FunctionParser<dim>> fibre;
-    bool                                 edge_length;
-    bool                                 mean_dilatation;
-    bool                                 nodal_dilatation;
+    std::string                          formulation_name;
     bool                                 project;
 
     const Entry &

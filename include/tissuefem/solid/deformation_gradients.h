@@ -2,10 +2,8 @@
 
 #include <deal.II/fe/fe_values.h>
 
-#include <tissuefem/materials/material_set.h>
 #include <tissuefem/solid/discretization.h>
-#include <tissuefem/solid/mean_dilatation.h>
-#include <tissuefem/solid/nodal_dilatation.h>
+#include <tissuefem/solid/formulations/interface.h>
 
 #include <vector>
 
@@ -32,21 +30,17 @@ namespace tissuefem::solid
 
 
   /// Calls @p f(cell, q, F, JxW) at every quadrature point of the locally
-  /// owned cells; with @p materials' mean or nodal dilatation, F is their
-  /// Fbar (the plain F in cells where Fbar is not defined).
+  /// owned cells; with a formulation's @p deformation (Solid::deformation()),
+  /// F is its effective one, Fbar for the mean or nodal dilatation (the
+  /// plain F in cells where Fbar is not defined).
   template <int dim, typename Callback>
   void
-  for_each_deformation_gradient(const Discretization<dim> &discretization,
-                                const VectorType          &u,
-                                const Callback            &f,
-                                const materials::MaterialSet<dim> *materials
-                                = nullptr)
+  for_each_deformation_gradient(
+    const Discretization<dim>            &discretization,
+    const VectorType                     &u,
+    const Callback                       &f,
+    const formulations::Deformation<dim> *deformation = nullptr)
   {
-    const bool f_bar = materials && materials->mean_dilatation_formulation();
-    const std::vector<double> theta
-      = materials && materials->nodal_dilatation_formulation()
-          ? NodalDilatation<dim>(discretization).dilatations(u)
-          : std::vector<double>();
     FEValues<dim>                    fe_values(*discretization.mapping,
                             *discretization.fe,
                             discretization.cell_quadrature,
@@ -65,10 +59,8 @@ namespace tissuefem::solid
               F[q]   = unit_symmetric_tensor<dim>() + grad_u[q];
               JxW[q] = fe_values.JxW(q);
             }
-          if (f_bar)
-            apply_mean_dilatation(F, JxW.data(), F.size());
-          if (!theta.empty())
-            apply_dilatation(F, F.size(), theta[cell->active_cell_index()]);
+          if (deformation)
+            deformation->apply(cell, F, JxW.data(), F.size());
           for (const unsigned int q : fe_values.quadrature_point_indices())
             f(cell, q, F[q], JxW[q]);
         }

@@ -21,10 +21,13 @@ namespace tissuefem::solid
   class FibreField
   {
   public:
-    /// Evaluates the field on the current mesh of @p discretization.
+    /// Evaluates the field on the current mesh of @p discretization; with
+    /// @p per_cell (a formulation with one fibre per element: the
+    /// edge-length element) the normalized cell mean at every point.
     void
     build(const Discretization<dim>         &discretization,
-          const materials::MaterialSet<dim> &materials);
+          const materials::MaterialSet<dim> &materials,
+          const bool                         per_cell = false);
 
     /// The direction at quadrature point @p q of the cell with active
     /// index @p cell_index (any unit vector if no material uses fibres).

@@ -82,14 +82,13 @@ namespace tissuefem::solid
     }
 
     /// Whether the kernel computes what the general path would: linear
-    /// simplices in 2D or 3D, the displacement formulation or the nodal
-    /// dilatation (whose elastic part Solid takes from its patches, asking
-    /// the kernel for inertia and gravity only: Input::internal false), a
-    /// quadrature rule exact for the P1 mass matrix.
+    /// simplices in 2D or 3D and a quadrature rule exact for the P1 mass
+    /// matrix. (Whether the formulation lets it serve, wholly or for the
+    /// inertia and gravity only, Input::internal false, is the
+    /// formulation's: formulations::Interface::lean_kernel().)
     static bool
-    applies(const Discretization<dim>         &discretization,
-            const materials::MaterialSet<dim> &materials,
-            const CellCache<dim>              &cache);
+    applies(const Discretization<dim> &discretization,
+            const CellCache<dim>      &cache);
 
     /**
      * Stores the per-cell data for the current mesh. @p ghost_index[c * n +

@@ -6,6 +6,7 @@
 #include <tissuefem/materials/material_set.h>
 #include <tissuefem/solid/discretization.h>
 #include <tissuefem/solid/fibre_field.h>
+#include <tissuefem/solid/formulations/interface.h>
 
 namespace tissuefem::solid
 {
@@ -15,29 +16,23 @@ namespace tissuefem::solid
    * returns the global value on every process.
    */
 
-  /// int Psi(F) dV over the body (energy units).
-  template <int dim>
-  double
-  stored_energy(const Discretization<dim>         &discretization,
-                const materials::MaterialSet<dim> &materials,
-                const FibreField<dim>             &fibres,
-                const VectorType                  &u);
-
   /**
    * Per-cell averages over quadrature points of J = det F and of the von
    * Mises equivalent of the Cauchy stress sigma = P F^T / J (computed from
    * the dim x dim stress: sqrt(3/2 dev(sigma) : dev(sigma)); in 1D |sigma|;
-   * in 2D the out-of-plane stress is not included). Entries of cells this
-   * process does not own are zero.
+   * in 2D the out-of-plane stress is not included), with F the
+   * formulation's effective one (@p deformation, Solid::deformation(); the
+   * plain F if null). Entries of cells this process does not own are zero.
    */
   template <int dim>
   void
-  cell_fields(const Discretization<dim>         &discretization,
-              const materials::MaterialSet<dim> &materials,
-              const FibreField<dim>             &fibres,
-              const VectorType                  &u,
-              Vector<float>                     &jacobian,
-              Vector<float>                     &von_mises);
+  cell_fields(const Discretization<dim>            &discretization,
+              const materials::MaterialSet<dim>    &materials,
+              const FibreField<dim>                &fibres,
+              const formulations::Deformation<dim> *deformation,
+              const VectorType                     &u,
+              Vector<float>                        &jacobian,
+              Vector<float>                        &von_mises);
 
   /// The smallest J = det F over all quadrature points.
   template <int dim>

@@ -11,11 +11,9 @@
 #include <tissuefem/solid/dilatation_carry.h>
 #include <tissuefem/solid/discretization.h>
 #include <tissuefem/solid/fibre_field.h>
+#include <tissuefem/solid/formulations/interface.h>
 #include <tissuefem/solid/linear_simplex_kernel.h>
-#include <tissuefem/solid/nodal_dilatation.h>
-#include <tissuefem/solid/nodal_dilatation_system.h>
 #include <tissuefem/solid/operators.h>
-#include <tissuefem/solid/three_field_dilatation.h>
 
 #include <cstdint>
 #include <functional>
@@ -266,15 +264,31 @@ namespace tissuefem::solid
       return fibre_field;
     }
 
-    /// The cell dilatations carried across mesh changes (mean dilatation
-    /// formulation; see dilatation_carry.h), which a mesh adaptation
-    /// records and finishes. They enter the implicit operators
-    /// (implicit_residual, implicit_residual_lifting, implicit_energy)
-    /// only: outputs and the other operators see the material as it is.
-    DilatationCarry<dim> &
+    /// The element formulation ('Materials/Formulation').
+    const formulations::Interface<dim> &
+    formulation() const
+    {
+      return *element;
+    }
+
+    /// The formulation's effective deformation gradients of the ghosted
+    /// state @p u (outputs: J, stresses).
+    std::unique_ptr<formulations::Deformation<dim>>
+    deformation(const VectorType &u) const
+    {
+      return element->deformation(context(), u, nullptr);
+    }
+
+    /// The cell dilatations carried across mesh changes, where the
+    /// formulation carries them (mean dilatation; see dilatation_carry.h;
+    /// else null), which a mesh adaptation records and finishes. They
+    /// enter the implicit operators (implicit_residual,
+    /// implicit_residual_lifting, implicit_energy) only: outputs and the
+    /// other operators see the material as it is.
+    DilatationCarry<dim> *
     dilatation_carry()
     {
-      return carry;
+      return element->carry();
     }
 
     /// Tells the force contributions that an attempt at a step starts from
@@ -291,8 +305,9 @@ namespace tissuefem::solid
             const unsigned int update,
             std::string       &message) override;
 
-    /// The three-field form of the mean dilatation element
-    /// (ThreeFieldDilatation) where the formulation is 'mean dilatation'.
+    /// The formulation's own unknowns where it has them (the three-field
+    /// form of the mean dilatation element, ThreeFieldDilatation), which
+    /// these members drive.
     IterationUnknowns *
     iteration_unknowns() override;
     void
@@ -306,7 +321,8 @@ namespace tissuefem::solid
     bool
     iterating() const override
     {
-      return three_field.active();
+      const IterationUnknowns *unknowns = element->iteration_unknowns();
+      return unknowns && unknowns->iterating();
     }
 
   private:
@@ -379,23 +395,28 @@ namespace tissuefem::solid
     bool
     uses_lean_kernel(const Request &request) const;
 
-    /// For the nodal dilatation, before a Jacobian's assembly: the wide
-    /// matrix built where it is the Jacobian's layout, or the sparser
-    /// system's blocks cleared.
+    /// Before a Jacobian's assembly: the Jacobian laid out with the
+    /// formulation's wide couplings where it needs them and keeps no
+    /// system of its own, or its own system cleared.
     void
-    prepare_nodal_jacobian();
+    prepare_jacobian();
 
-    /// For the nodal dilatation: adds the elastic part of @p request (the
-    /// patches' residual, and Jacobian into the sparser system or the wide
-    /// matrix) and appends its undefined cells to @p inverted. With @p
-    /// loads (the lean path's Jacobians into the sparser system) the
-    /// request's inertia and gravity too, in the same cell blocks.
+    /// The formulation's terms that couple patches of cells (after the
+    /// cell loop) for @p request, appending undefined cells to
+    /// @p inverted; with @p loads (the lean path's Jacobians into the
+    /// formulation's own system) the request's inertia and gravity too.
     void
-    add_nodal_elastic(
-      const Request                                             &request,
-      VectorType                                                &residual,
-      std::vector<std::tuple<unsigned int, double, Point<dim>>> &inverted,
-      const bool                                                 loads = false);
+    add_patch_terms(const Request               &request,
+                    VectorType                  &residual,
+                    formulations::Inverted<dim> &inverted,
+                    const bool                   loads = false);
+
+    /// What the formulation sees of this solid.
+    formulations::Context<dim>
+    context() const
+    {
+      return {discretization, materials, cache, fibre_field};
+    }
 
     /// Throws InvertedElementError naming the @p inverted cells (active
     /// cell index, det F, centre), gathered from every process.
@@ -403,53 +424,6 @@ namespace tissuefem::solid
     report_inversions(
       const std::vector<std::tuple<unsigned int, double, Point<dim>>> &inverted)
       const;
-
-    /// For the mean dilatation formulation: the effective stresses and
-    /// tangents of a cell and its rank-two coupling (mean_dilatation.h),
-    /// into the assembly's scratch, with the cell's dilatation scaled by
-    /// @p carried (DilatationCarry); marks the cell inverted if some det F
-    /// <= 0.
-    template <typename ScratchType, typename CopyType>
-    void
-    mean_dilatation_cell(const materials::Interface<dim> &material,
-                         const unsigned int               c,
-                         const unsigned int               cell_index,
-                         const bool                       jacobian,
-                         const double                     carried,
-                         ScratchType                     &s,
-                         CopyType                        &copy) const;
-
-    /// The stresses (phi_F in s.P), and with @p linearize the tangents
-    /// and b = dtheta/du, C and Theta (mean_dilatation.h), of the mean
-    /// dilatation element at the cell dilatation @p theta, for the
-    /// deformation gradients in s.F; returns (V, Phi_theta).
-    template <typename ScratchType>
-    std::pair<double, double>
-    dilatation_point_terms(const materials::Interface<dim> &material,
-                           const unsigned int               c,
-                           const unsigned int               cell_index,
-                           const double                     theta,
-                           const bool                       linearize,
-                           ScratchType                     &s) const;
-
-    /// mean_dilatation_cell() with the cell's dilatation and pressure the
-    /// three-field unknowns (ThreeFieldDilatation).
-    template <typename ScratchType, typename CopyType>
-    void
-    three_field_cell(const materials::Interface<dim> &material,
-                     const unsigned int               c,
-                     const unsigned int               cell_index,
-                     const bool                       jacobian,
-                     ScratchType                     &s,
-                     CopyType                        &copy) const;
-
-    /// Adds the cell pressure's term pressure cof F_q to s.P (and its
-    /// derivative to s.A).
-    template <typename ScratchType>
-    void
-    add_cell_pressure(const double pressure,
-                      const bool   jacobian,
-                      ScratchType &s) const;
 
     /// The stored energy of the ghosted displacement @p ghosted (as
     /// make_ghosted() sets it), with the carried cell dilatations of
@@ -469,57 +443,17 @@ namespace tissuefem::solid
                ScratchType       &s,
                CopyType          &copy) const;
 
-    /// The deformation of the cell: F at its quadrature points (into s.F),
-    /// or for the mean-dilatation formulation its stresses and tangents
-    /// (s.P, s.A); marks the cell inverted (copy.inverted_det) where the
-    /// model cannot represent det F <= 0.
-    template <typename ScratchType, typename CopyType>
-    void
-    cell_deformation(const Request                   &request,
-                     const materials::Interface<dim> &material,
-                     const unsigned int               c,
-                     ScratchType                     &s,
-                     CopyType                        &copy) const;
-
     /// Adds, point by point, the elastic terms (if @p elastic) of the
-    /// stress P and tangent A that @p stress_at(q, P, A) gives (the
-    /// formulation's), the loads and the inertia (density @p rho).
-    template <typename ScratchType, typename CopyType, typename StressAt>
-    void
-    add_point_terms_with(const Request     &request,
-                         const unsigned int c,
-                         const double       rho,
-                         const bool         elastic,
-                         const StressAt    &stress_at,
-                         ScratchType       &s,
-                         CopyType          &copy) const;
-
-    /// add_point_terms_with() with the stress of the cell's formulation:
-    /// the mean dilatation's, computed for the whole cell, or the
-    /// displacement formulation's, from F at the point.
+    /// stress and tangent the formulation gave in s.cell (P, A), the
+    /// loads and the inertia (density @p rho).
     template <typename ScratchType, typename CopyType>
     void
-    add_point_terms(const Request                   &request,
-                    const materials::Interface<dim> &material,
-                    const unsigned int               c,
-                    const double                     rho,
-                    const bool                       elastic,
-                    ScratchType                     &s,
-                    CopyType                        &copy) const;
-
-    /// The mean-dilatation Jacobian's coupling of all points through theta.
-    template <typename ScratchType, typename CopyType>
-    void
-    add_mean_dilatation_coupling(const ScratchType &s, CopyType &copy) const;
-
-    /// The edge-length element's forces (and stiffness) of the cell.
-    template <typename ScratchType, typename CopyType>
-    void
-    add_edge_length_cell(const materials::Interface<dim> &material,
-                         const unsigned int               c,
-                         const bool                       jacobian,
-                         ScratchType                     &s,
-                         CopyType                        &copy) const;
+    add_point_terms(const Request     &request,
+                    const unsigned int c,
+                    const double       rho,
+                    const bool         elastic,
+                    ScratchType       &s,
+                    CopyType          &copy) const;
 
     /// The Neumann tractions on the cell's boundary faces.
     template <typename ScratchType, typename CopyType>
@@ -540,23 +474,12 @@ namespace tissuefem::solid
     CellCache<dim>                     cache;
     /// The lean kernel, where it applies to the mesh (else null).
     std::unique_ptr<LinearSimplexKernel<dim>> lean;
-    /// The nodally averaged dilatation's patches ('Formulation = nodal
-    /// dilatation'), rebuilt with the mesh.
-    std::unique_ptr<NodalDilatation<dim>> nodal;
-    /// Its Newton systems with P1's stencil, where the caller solves only
-    /// through solve_jacobian() with a direct solver (else null: the wide
-    /// Jacobian in jacobian_matrix).
-    std::unique_ptr<NodalDilatationSystem<dim>> nodal_system;
+    /// The element formulation (a registered formulations::Interface).
+    std::unique_ptr<formulations::Interface<dim>> element;
     /// Whether the caller solves only through solve_jacobian(), with a
     /// direct solver (solve_only_through_operators()).
-    bool                 solves_only_through_operators = false;
-    FibreField<dim>      fibre_field;
-    DilatationCarry<dim> carry;
-    /// The three-field unknowns, written by the assembly (one cell per
-    /// thread) while iterating().
-    mutable ThreeFieldDilatation three_field;
-    /// The start of the step being iterated (begin_iterations()).
-    double                    three_field_start = 0;
+    bool                      solves_only_through_operators = false;
+    FibreField<dim>           fibre_field;
     AffineConstraints<double> no_constraints;
     /// Constraints with the Dirichlet increment (implicit_residual_lifting).
     AffineConstraints<double>                         lifting_constraints;
@@ -650,12 +573,12 @@ namespace tissuefem::solid
 
     /// The Jacobian's sparsity and matrix for the current dofs (and the
     /// nodal dilatation's system where it serves), then direct access.
-    /// The nodal dilatation's wide Jacobian (couplings across patches)
-    /// only with @p wide: assemble() asks for it when it first needs it,
-    /// so that runs solving through the system never build it.
+    /// The couplings of a formulation's patches only with @p wide:
+    /// assemble() asks for them when it first needs them, so that runs
+    /// solving through the formulation's own system never build them.
     void
     build_jacobian_matrix(const bool wide);
-    /// Whether jacobian_matrix has the nodal dilatation's wide couplings.
+    /// Whether jacobian_matrix has the patches' wide couplings.
     bool wide_layout = false;
 
     /**
