@@ -12,6 +12,7 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <tissuefem/app/parameters.h>
 #include <tissuefem/forces/registry.h>
 #include <tissuefem/scene/scene.h>
 
