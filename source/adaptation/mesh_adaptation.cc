@@ -59,24 +59,6 @@ namespace tissuefem::adaptation
                       Patterns::Integer(0),
                       "Stop refining when the mesh would exceed about this "
                       "many cells; 0: no limit.");
-    prm.declare_entry(
-      "Dilatation release steps",
-      "1",
-      Patterns::Double(0, 1000),
-      "With 'Materials/Formulation = mean dilatation': each cell of a "
-      "changed mesh starts with the volume change (cell mean of det F) of "
-      "the cell it came from, so that refining a nearly incompressible body "
-      "does not create pressure jumps of the bulk modulus times the "
-      "variation of det F inside the old cell. With 'Newton solver/Mean "
-      "dilatation update = three-field' (default) that is the first iterate "
-      "of the cell dilatations in the next step, which then solves the new "
-      "mesh's equations, and this entry only says whether to carry (0: "
-      "not). With 'condensed' the cell's own volume change is phased in "
-      "linearly over this many times 'Time integration/Time step' of "
-      "simulated time (a halved step faces half the change). Only the "
-      "implicit integrators' equations see the carried part; outputs show "
-      "the material itself. 0: a new cell has its own volume change at "
-      "once.");
     prm.leave_subsection();
   }
 
@@ -85,14 +67,13 @@ namespace tissuefem::adaptation
   MeshRefinementParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Mesh refinement");
-    indicator                = prm.get("Indicator");
-    strategy                 = prm.get("Strategy");
-    refine_fraction          = prm.get_double("Refine fraction");
-    coarsen_fraction         = prm.get_double("Coarsen fraction");
-    interval                 = prm.get_integer("Interval");
-    max_levels               = prm.get_integer("Maximum levels");
-    max_cells                = prm.get_integer("Maximum cells");
-    dilatation_release_steps = prm.get_double("Dilatation release steps");
+    indicator        = prm.get("Indicator");
+    strategy         = prm.get("Strategy");
+    refine_fraction  = prm.get_double("Refine fraction");
+    coarsen_fraction = prm.get_double("Coarsen fraction");
+    interval         = prm.get_integer("Interval");
+    max_levels       = prm.get_integer("Maximum levels");
+    max_cells        = prm.get_integer("Maximum cells");
     prm.leave_subsection();
     require(refine_fraction + coarsen_fraction <= 1,
             "Mesh refinement/Coarsen fraction",
@@ -188,7 +169,7 @@ namespace tissuefem::adaptation
                 ExcMessage("adapt(): u must be among the vectors"));
     const unsigned int                 u_k     = u_index - vectors.begin();
     solid::DilatationCarry<dim> *const carried = solid.dilatation_carry();
-    const bool carry = carried && parameters.dilatation_release_steps > 0;
+    const bool carry = carried && carried->release_steps > 0;
     if (carry)
       carried->record(dof_handler,
                       *discretization.mapping,
@@ -228,7 +209,7 @@ namespace tissuefem::adaptation
                           discretization.cell_quadrature,
                           u_new,
                           time,
-                          parameters.dilatation_release_steps * time_step);
+                          carried->release_steps * time_step);
         },
         boost::signals2::at_front);
     solid.setup();

@@ -216,11 +216,13 @@ namespace tissuefem::problems
         materials::MaterialParameters parameters = material_parameters;
         parameters.tangent_method                = method;
         materials::MaterialSet<dim> materials(parameters, prm);
-        solid::Solid<dim>           system(discretization,
-                                 materials,
-                                 boundary_conditions);
-        VectorType                  residual;
-        double                      best = 1e300;
+        solid::Solid<dim>           system(
+          discretization,
+          materials,
+          boundary_conditions,
+          solid::formulations::create<dim>(materials.formulation(), prm));
+        VectorType residual;
+        double     best = 1e300;
         for (unsigned int r = 0; r < repetitions; ++r)
           {
             const auto start = std::chrono::steady_clock::now();
@@ -372,7 +374,11 @@ namespace tissuefem::problems
     const double n_cells
       = discretization.dof_handler.get_triangulation().n_active_cells();
     materials::MaterialSet<dim> materials(material_parameters, prm);
-    solid::Solid<dim>    solid(discretization, materials, boundary_conditions);
+    solid::Solid<dim>           solid(
+      discretization,
+      materials,
+      boundary_conditions,
+      solid::formulations::create<dim>(materials.formulation(), prm));
     FloorKernel<dim>     floor(discretization, materials);
     const Vector<double> u_all(u);
     auto                 time = [&](const auto &work) {
@@ -426,9 +432,11 @@ namespace tissuefem::problems
         // The general quadrature loop on the same mesh, for the ratio the
         // lean kernel of linear simplices buys.
         discretization.lean_kernel = false;
-        solid::Solid<dim> general(discretization,
-                                  materials,
-                                  boundary_conditions);
+        solid::Solid<dim> general(
+          discretization,
+          materials,
+          boundary_conditions,
+          solid::formulations::create<dim>(materials.formulation(), prm));
         rows.push_back(
           {"general path, " + std::to_string(all_threads) + " thread(s)",
            time([&] { general.internal_force(u, residual); }),

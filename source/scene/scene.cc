@@ -131,9 +131,11 @@ namespace tissuefem
     discretization = std::make_unique<solid::Discretization<dim>>(triangulation,
                                                                   fe_parameters,
                                                                   dim);
-    solid          = std::make_unique<solid::Solid<dim>>(*discretization,
-                                                *materials,
-                                                *boundary_conditions);
+    solid          = std::make_unique<solid::Solid<dim>>(
+      *discretization,
+      *materials,
+      *boundary_conditions,
+      solid::formulations::create<dim>(materials->formulation(), prm));
     // Every registered kind of force contribution the file asks for.
     const forces::SceneData<dim> data{parameter_directory,
                                       material_parameters,

@@ -29,14 +29,21 @@ namespace tissuefem::solid
   template <int dim>
   Solid<dim>::Solid(Discretization<dim>               &discretization,
                     const materials::MaterialSet<dim> &materials,
-                    boundary::BoundaryConditions<dim> &boundary_conditions)
+                    boundary::BoundaryConditions<dim> &boundary_conditions,
+                    std::unique_ptr<formulations::Interface<dim>> formulation)
       : discretization(discretization)
       , materials(materials)
       , boundary_conditions(boundary_conditions)
+      , element(std::move(formulation))
       , body_force_present(!boundary_conditions.body_force_is_zero)
   {
     no_constraints.close();
-    element = formulations::create<dim>(materials.formulation());
+    if (!element)
+      {
+        ParameterHandler defaults;
+        formulations::declare_parameters(defaults);
+        element = formulations::create<dim>(materials.formulation(), defaults);
+      }
     element->check(discretization, materials);
     setup();
   }

@@ -109,30 +109,6 @@ namespace tissuefem::solvers
       "by default: a run continued from a checkpoint factorizes anew where "
       "the uninterrupted run would not, so the two agree only to Newton's "
       "tolerances instead of bit for bit.");
-    prm.declare_entry(
-      "Mean dilatation update",
-      "three-field",
-      Patterns::Selection("three-field|condensed"),
-      "How implicit steps iterate the mean dilatation (F-bar) element "
-      "('Materials/Formulation = mean dilatation'); the converged answer "
-      "is the same. 'three-field': each cell's dilatation and pressure "
-      "are Newton unknowns of their own, updated linearly with the "
-      "displacement and condensed per cell (the Hu-Washizu form of Simo, "
-      "Taylor and Pister 1985, as in deal.II's step-44), and Newton "
-      "takes full steps, shortened only where a trial state cannot be "
-      "evaluated (off the constraint the energy is no merit). "
-      "'condensed': they are "
-      "recomputed from the displacement at every iterate, where a nearly "
-      "incompressible material turns a Newton step's second-order error "
-      "in the dilatation into pressures of bulk modulus times it. "
-      "Measured on parameters/cook_membrane.prm (nu = 0.4999): 4-5 "
-      "iterations per load step against 11-13, the whole load in one "
-      "step (condensed: 108 iterations, two halvings), and adaptive runs "
-      "without step halvings. A mesh change's carried dilatation "
-      "(DilatationCarry) is then the first iterate of the next step; "
-      "'Mesh refinement/Dilatation release steps' acts with 'condensed' "
-      "only. Integrators other than backward Euler and quasistatic use the "
-      "condensed element.");
     prm.declare_entry("Reuse contraction",
                       "0.25",
                       Patterns::Double(0, 1),
@@ -178,8 +154,7 @@ namespace tissuefem::solvers
     reuse_jacobian              = prm.get_bool("Jacobian reuse");
     reuse_contraction           = prm.get_double("Reuse contraction");
     reuse_across_steps          = prm.get_bool("Jacobian reuse across steps");
-    three_field_dilatation = prm.get("Mean dilatation update") == "three-field";
-    displacement_tolerance = prm.get_double("Displacement tolerance");
+    displacement_tolerance      = prm.get_double("Displacement tolerance");
     prm.leave_subsection();
   }
 

@@ -189,11 +189,10 @@ namespace tissuefem::time
     auto        &solid = context->solid;
     const double t_new = state.time + h;
     const double c     = begin_attempt(state, h, next);
-    // The three-field element's cell unknowns ('Newton solver/Mean
-    // dilatation update'): Newton updates them with u within this step.
-    solid::IterationUnknowns *unknowns = context->newton.three_field_dilatation
-                                           ? solid.iteration_unknowns()
-                                           : nullptr;
+    // The formulation's own unknowns (the three-field element's cell
+    // dilatations and pressures, 'Materials/Mean dilatation/Update'):
+    // Newton updates them with u within this step.
+    solid::IterationUnknowns *unknowns = solid.iteration_unknowns();
     if (unknowns)
       unknowns->begin_iterations(state.time);
     // Ended after Newton, or however the attempt ends, so that no other

@@ -81,9 +81,8 @@ namespace tissuefem::time
     void
     initialize(Context &c, State &state) override
     {
-      require(!c.newton.three_field_dilatation
-                || c.solid.iteration_unknowns() == nullptr,
-              "Newton solver/Mean dilatation update",
+      require(c.solid.iteration_unknowns() == nullptr,
+              "Materials/Mean dilatation/Update",
               "must not be 'three-field' with the quasi-Newton backward "
               "Euler (its cell unknowns need Newton's updates)");
       ImplicitOneStep::initialize(c, state);

@@ -1,7 +1,7 @@
 // The mean dilatation (F-bar) element's cell dilatations carried across
 // mesh changes and released over the next step (solid/dilatation_carry.h),
 // on Cook's membrane at nu = 0.4999 (parameters/cook_membrane.prm), with
-// the condensed update ('Newton solver/Mean dilatation update =
+// the condensed update ('Materials/Mean dilatation/Update =
 // condensed'), where the release acts; unit/three_field_dilatation runs
 // the default three-field update, for which the carry is the first
 // iterate after a change.
@@ -58,8 +58,10 @@ namespace
   cook(const std::string &extra)
   {
     return tissuefem_tests::adaptive_cook_membrane(R"(
-    subsection Newton solver
-      set Mean dilatation update = condensed
+    subsection Materials
+      subsection Mean dilatation
+        set Update = condensed
+      end
     end
     )" + extra);
   }
@@ -201,7 +203,11 @@ namespace
       set Refine fraction          = 0.3
       set Coarsen fraction         = 0.5
       set Maximum levels           = 2
-      set Dilatation release steps = 3
+    end
+    subsection Materials
+      subsection Mean dilatation
+        set Release steps = 3
+      end
     end
     )"));
     tissuefem_tests::SolidScene<2>       scene(prm);
@@ -280,8 +286,8 @@ namespace
     const auto run = tissuefem_tests::run_adaptive_cook(
       1500,
       "adaptive_cook",
-      "subsection Newton solver\n set Mean dilatation update = condensed\n"
-      "end\n");
+      "subsection Materials\n subsection Mean dilatation\n set Update = "
+      "condensed\n end\nend\n");
     tissuefem_tests::check(run.failure.empty() && run.time == 1,
                            "adaptive run reaches t = 1",
                            run.failure);

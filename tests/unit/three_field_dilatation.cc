@@ -1,5 +1,5 @@
 // The three-field update of the mean dilatation (F-bar) element
-// (solid/three_field_dilatation.h, 'Newton solver/Mean dilatation update'),
+// (solid/three_field_dilatation.h, 'Materials/Mean dilatation/Update'),
 // on Cook's membrane at nu = 0.4999 (parameters/cook_membrane.prm).
 //
 // 1. At a consistent state (the cell unknowns just set from u) the
@@ -72,8 +72,8 @@ namespace
     declare_all_parameters(prm);
     prm.parse_input_from_string(cook(
       "subsection Time integration\n set Time step = " + std::to_string(step)
-      + "\nend\nsubsection Newton solver\n set Mean dilatation update = "
-      + update + "\nend\n"));
+      + "\nend\nsubsection Materials\n subsection Mean dilatation\n set "
+      + "Update = " + update + "\n end\nend\n"));
     tissuefem_tests::SolidScene<2> scene(prm);
     auto                          &solid      = *scene.solid;
     auto                           integrator = scene.integrator(prm);

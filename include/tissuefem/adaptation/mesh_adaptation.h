@@ -30,9 +30,6 @@ namespace tissuefem::adaptation
     unsigned int interval;
     unsigned int max_levels;
     unsigned int max_cells;
-    /// Time steps over which a mean dilatation element's carried cell
-    /// dilatations are released after a change (0: not carried).
-    double dilatation_release_steps;
   };
 
   /**
@@ -72,9 +69,10 @@ namespace tissuefem::adaptation
      * Marks cells from the indicator of @p u, changes the mesh, sets the
      * solid up on it and interpolates every vector of @p vectors (owned
      * layout, replaced by vectors on the new mesh; @p u among them). For
-     * the mean dilatation formulation, the cells' dilatations are carried
-     * to the new mesh and released over 'Dilatation release steps' times
-     * @p time_step (solid/dilatation_carry.h). Returns whether the mesh
+     * a formulation that carries cell dilatations (the mean dilatation),
+     * they are carried to the new mesh and released over its release steps
+     * ('Materials/Mean dilatation/Release steps') times @p time_step
+     * (solid/dilatation_carry.h). Returns whether the mesh
      * changed.
      */
     bool

@@ -83,6 +83,11 @@ namespace tissuefem::solid
     void
     clear();
 
+    /// How many time steps a carried dilatation is released over, as the
+    /// formulation reads it ('Materials/Mean dilatation/Release steps';
+    /// 0: nothing is carried).
+    double release_steps = 1;
+
     /// The mean dilatation theta = int J dV / V and the volume V of every
     /// active cell (0, 0 for artificial cells) for the whole displacement
     /// vector @p u.

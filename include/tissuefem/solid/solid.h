@@ -48,9 +48,13 @@ namespace tissuefem::solid
   class Solid : public Operators, public IterationUnknowns
   {
   public:
-    Solid(Discretization<dim>               &discretization,
-          const materials::MaterialSet<dim> &materials,
-          boundary::BoundaryConditions<dim> &boundary_conditions);
+    /// With the element @p formulation (formulations::create(); null: the
+    /// one 'Materials/Formulation' of @p materials names, with its
+    /// default settings).
+    Solid(Discretization<dim>                          &discretization,
+          const materials::MaterialSet<dim>            &materials,
+          boundary::BoundaryConditions<dim>            &boundary_conditions,
+          std::unique_ptr<formulations::Interface<dim>> formulation = nullptr);
 
     /// Distributes dofs, builds constraints, the matrix and the caches for
     /// the current mesh and constraints; after the first time, announces

@@ -38,10 +38,6 @@ namespace tissuefem::solvers
     bool reuse_jacobian;
     /// Whether the factorization is also kept from step to step.
     bool reuse_across_steps;
-    /// Whether the mean dilatation element's cell dilatations and
-    /// pressures are Newton unknowns of their own within a step
-    /// ('Mean dilatation update = three-field').
-    bool three_field_dilatation;
     /// The largest |R_{k+1}| / |R_k| with a kept Jacobian before it is
     /// assembled and factorized anew.
     double reuse_contraction;

@@ -110,19 +110,20 @@ namespace tissuefem::solid::formulations
 
   template <int dim>
   std::unique_ptr<Interface<dim>>
-  create(const std::string &name)
+  create(const std::string &name, ParameterHandler &prm)
   {
-    return FormulationRegistry<dim>::instance().create(name);
+    return FormulationRegistry<dim>::instance().create(name, prm);
   }
 
 
-#define TISSUEFEM_INSTANTIATE(dim)                            \
-  template struct CellTerms<dim>;                             \
-  template class Interface<dim>;                              \
-  template void deformation_gradients(const CellCache<dim> &, \
-                                      CellTerms<dim> &);      \
-  template void check_inversion(CellTerms<dim> &);            \
-  template std::unique_ptr<Interface<dim>> create<dim>(const std::string &);
+#define TISSUEFEM_INSTANTIATE(dim)                                          \
+  template struct CellTerms<dim>;                                           \
+  template class Interface<dim>;                                            \
+  template void deformation_gradients(const CellCache<dim> &,               \
+                                      CellTerms<dim> &);                    \
+  template void check_inversion(CellTerms<dim> &);                          \
+  template std::unique_ptr<Interface<dim>> create<dim>(const std::string &, \
+                                                       ParameterHandler &);
   TISSUEFEM_INSTANTIATE(1)
   TISSUEFEM_INSTANTIATE(2)
   TISSUEFEM_INSTANTIATE(3)

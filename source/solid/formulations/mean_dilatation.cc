@@ -1,3 +1,4 @@
+#include <tissuefem/base/moved_entries.h>
 #include <tissuefem/materials/kinematics.h>
 #include <tissuefem/materials/tangent_projection.h>
 #include <tissuefem/solid/formulations/mean_dilatation.h>
@@ -65,6 +66,69 @@ namespace tissuefem::solid::formulations
       const double               *carry_time;
     };
   } // namespace
+
+
+  template <int dim>
+  void
+  MeanDilatation<dim>::declare_parameters(ParameterHandler &prm)
+  {
+    moved_entries::declare(
+      prm,
+      "Newton solver/Mean dilatation update",
+      "Materials/Mean dilatation/Update",
+      "three-field",
+      Patterns::Selection("three-field|condensed"),
+      "How implicit steps iterate the mean dilatation (F-bar) element "
+      "('Materials/Formulation = mean dilatation'); the converged answer "
+      "is the same. 'three-field': each cell's dilatation and pressure "
+      "are Newton unknowns of their own, updated linearly with the "
+      "displacement and condensed per cell (the Hu-Washizu form of Simo, "
+      "Taylor and Pister 1985, as in deal.II's step-44), and Newton "
+      "takes full steps, shortened only where a trial state cannot be "
+      "evaluated (off the constraint the energy is no merit). "
+      "'condensed': they are recomputed from the displacement at every "
+      "iterate, where a nearly incompressible material turns a Newton "
+      "step's second-order error in the dilatation into pressures of bulk "
+      "modulus times it. Measured on parameters/cook_membrane.prm (nu = "
+      "0.4999): 4-5 iterations per load step against 11-13, the whole load "
+      "in one step (condensed: 108 iterations, two halvings), and adaptive "
+      "runs without step halvings. A mesh change's carried dilatation "
+      "(DilatationCarry) is then the first iterate of the next step; "
+      "'Release steps' acts with 'condensed' only. Integrators other than "
+      "backward Euler and quasistatic use the condensed element; the "
+      "quasi-Newton backward Euler needs 'condensed'.");
+    moved_entries::declare(
+      prm,
+      "Mesh refinement/Dilatation release steps",
+      "Materials/Mean dilatation/Release steps",
+      "1",
+      Patterns::Double(0, 1000),
+      "With an adaptive mesh: each cell of a changed mesh starts with the "
+      "volume change (cell mean of det F) of the cell it came from, so "
+      "that refining a nearly incompressible body does not create "
+      "pressure jumps of the bulk modulus times the variation of det F "
+      "inside the old cell. With 'Update = three-field' (default) that is "
+      "the first iterate of the cell dilatations in the next step, which "
+      "then solves the new mesh's equations, and this entry only says "
+      "whether to carry (0: not). With 'condensed' the cell's own volume "
+      "change is phased in linearly over this many times 'Time "
+      "integration/Time step' of simulated time (a halved step faces half "
+      "the change). Only the implicit integrators' equations see the "
+      "carried part; outputs show the material itself. 0: a new cell has "
+      "its own volume change at once.");
+  }
+
+
+  template <int dim>
+  MeanDilatation<dim>::MeanDilatation(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Materials");
+    prm.enter_subsection("Mean dilatation");
+    three_field_update    = prm.get("Update") == "three-field";
+    carried.release_steps = prm.get_double("Release steps");
+    prm.leave_subsection();
+    prm.leave_subsection();
+  }
 
 
   template <int dim>

@@ -13,9 +13,12 @@
 #include <tissuefem/solid/fibre_field.h>
 #include <tissuefem/solid/iteration_unknowns.h>
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <tuple>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace tissuefem::solvers
@@ -360,36 +363,71 @@ namespace tissuefem::solid::formulations
 
 
   template <int dim>
-  using FormulationRegistry = Registry<Interface<dim>>;
+  using FormulationRegistry = Registry<Interface<dim>, ParameterHandler &>;
 
   /// Declares 'Materials/Formulation' (its choices: what is registered)
   /// and every formulation's own parameters.
   void
   declare_parameters(ParameterHandler &prm);
 
-  /// The formulation 'Materials/Formulation' names, for the solid.
+  /// The formulation 'Materials/Formulation' names, reading its own
+  /// parameters from @p prm, for the solid.
   template <int dim>
   std::unique_ptr<Interface<dim>>
-  create(const std::string &name);
+  create(const std::string &name, ParameterHandler &prm);
 
   namespace internal
   {
+    /// Whether @p T has a static declare_parameters(ParameterHandler &).
+    template <typename T, typename = void>
+    struct declares_parameters : std::false_type
+    {
+    };
+    template <typename T>
+    struct declares_parameters<T,
+                               std::void_t<decltype(T::declare_parameters(
+                                 std::declval<ParameterHandler &>()))>>
+        : std::true_type
+    {
+    };
+
+    /// A formulation reads its parameters where it has a constructor that
+    /// takes them, else it has none.
+    template <template <int> class Formulation, int dim>
+    std::unique_ptr<Interface<dim>>
+    make(ParameterHandler &prm)
+    {
+      if constexpr (std::is_constructible_v<Formulation<dim>,
+                                            ParameterHandler &>)
+        return std::make_unique<Formulation<dim>>(prm);
+      else
+        {
+          (void)prm;
+          return std::make_unique<Formulation<dim>>();
+        }
+    }
+
     template <template <int> class Formulation>
     void
     add_formulation(const std::string &name, const std::string &description)
     {
-      FormulationRegistry<1>::instance().add(name, description, nullptr, [] {
-        return std::unique_ptr<Interface<1>>(
-          std::make_unique<Formulation<1>>());
-      });
-      FormulationRegistry<2>::instance().add(name, description, nullptr, [] {
-        return std::unique_ptr<Interface<2>>(
-          std::make_unique<Formulation<2>>());
-      });
-      FormulationRegistry<3>::instance().add(name, description, nullptr, [] {
-        return std::unique_ptr<Interface<3>>(
-          std::make_unique<Formulation<3>>());
-      });
+      // Parameters are declared once (by the 3D class: they do not depend
+      // on the dimension).
+      std::function<void(ParameterHandler &)> declarer;
+      if constexpr (declares_parameters<Formulation<3>>::value)
+        declarer = &Formulation<3>::declare_parameters;
+      FormulationRegistry<1>::instance().add(name,
+                                             description,
+                                             nullptr,
+                                             &make<Formulation, 1>);
+      FormulationRegistry<2>::instance().add(name,
+                                             description,
+                                             nullptr,
+                                             &make<Formulation, 2>);
+      FormulationRegistry<3>::instance().add(name,
+                                             description,
+                                             declarer,
+                                             &make<Formulation, 3>);
     }
   } // namespace internal
 } // namespace tissuefem::solid::formulations

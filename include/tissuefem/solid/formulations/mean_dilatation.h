@@ -14,12 +14,21 @@ namespace tissuefem::solid::formulations
    * solver/Mean dilatation update = three field' the cell dilatation and
    * pressure are Newton unknowns of their own (ThreeFieldDilatation, the
    * IterationUnknowns here); after a mesh change the old cells'
-   * dilatations may be carried (DilatationCarry).
+   * dilatations may be carried (DilatationCarry). Its settings are the
+   * subsection 'Materials/Mean dilatation'.
    */
   template <int dim>
   class MeanDilatation : public Interface<dim>, public IterationUnknowns
   {
   public:
+    /// 'Materials/Mean dilatation' ('Update', 'Release steps'; earlier
+    /// 'Newton solver/Mean dilatation update' and 'Mesh
+    /// refinement/Dilatation release steps', still read).
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    explicit MeanDilatation(ParameterHandler &prm);
+
     void
     check(const Discretization<dim>         &discretization,
           const materials::MaterialSet<dim> &materials) const override;
@@ -52,10 +61,12 @@ namespace tissuefem::solid::formulations
     std::string
     inversion_advice() const override;
 
+    /// With 'Update = three-field' (else the dilatation is condensed:
+    /// recomputed from the displacement at every iterate).
     IterationUnknowns *
     iteration_unknowns() override
     {
-      return this;
+      return three_field_update ? this : nullptr;
     }
 
     DilatationCarry<dim> *
@@ -109,5 +120,7 @@ namespace tissuefem::solid::formulations
     DilatationCarry<dim> carried;
     /// The cell cache, for predict_update() (setup()).
     const CellCache<dim> *cache = nullptr;
+    /// 'Update = three-field'.
+    bool three_field_update = true;
   };
 } // namespace tissuefem::solid::formulations
