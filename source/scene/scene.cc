@@ -252,7 +252,8 @@ namespace tissuefem
   {
     std::ostringstream s;
     s << triangulation.n_active_cells() << " cells, " << solid->n_dofs()
-      << " unknowns, element " << discretization->fe->get_name();
+      << " unknowns, element " << discretization->fe->get_name()
+      << ", formulation '" << materials->formulation() << "'";
     return s.str();
   }
 
