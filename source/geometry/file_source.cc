@@ -28,6 +28,16 @@ namespace tissuefem::geometry
       std::ifstream    in(file);
       const GmshSurvey survey
         = extension == ".msh" ? survey_gmsh(file, dim) : GmshSurvey();
+      // A cell that lists a node twice has no volume; refused before the
+      // reader builds it (deal.II's connectivity asserts on it in debug
+      // builds, and a release build would leave it to the mesh check).
+      if (!survey.repeated_node_elements.empty())
+        throw InputError(
+          "Mesh file '" + file
+          + "': " + std::to_string(survey.repeated_node_elements.size())
+          + " degenerate cells (zero volume: an element lists a node "
+            "twice), the first: element number "
+          + std::to_string(survey.repeated_node_elements[0]));
       try
         {
           if (extension == ".msh")

@@ -235,13 +235,19 @@ namespace tissuefem::geometry
               || (dim == 3 && type == 4 && n_nodes == 4)))
           continue;
         std::array<std::array<double, 3>, 4> x;
+        std::array<long, 4>                  listed{};
         for (long k = 0; k < n_nodes; ++k)
           {
             long node;
             if (!(fields >> node) || nodes.count(node) == 0)
               return {}; // the reader reports it
-            x[k] = nodes[node];
+            x[k]      = nodes[node];
+            listed[k] = node;
           }
+        std::sort(listed.begin(), listed.begin() + n_nodes);
+        if (std::adjacent_find(listed.begin(), listed.begin() + n_nodes)
+            != listed.begin() + n_nodes)
+          survey.repeated_node_elements.push_back(id);
         double e[3][3];
         for (int k = 0; k < dim; ++k)
           for (int c = 0; c < 3; ++c)

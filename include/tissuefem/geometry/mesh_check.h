@@ -38,14 +38,18 @@ namespace tissuefem::geometry
     /// repetition, and how many elements use each.
     std::vector<long>         repeated_numbers;
     std::vector<unsigned int> repeated_uses;
+    /// Numbers of the simplices that list one node twice (degenerate:
+    /// deal.II's reader would build a cell that connects a vertex to
+    /// itself, which its debug build stops on).
+    std::vector<long> repeated_node_elements;
   };
 
   /**
    * Surveys a Gmsh ASCII file (formats 1.0 and 2.x) for what deal.II's
    * reader passes over in silence: simplices in inverted order (it
-   * reorients them) and element numbers used twice (it numbers cells
-   * itself). Empty where the file cannot be parsed (the reader reports
-   * that) or is of format 4.
+   * reorients them), element numbers used twice (it numbers cells
+   * itself) and simplices listing a node twice. Empty where the file cannot be
+   * parsed (the reader reports that) or is of format 4.
    */
   GmshSurvey
   survey_gmsh(const std::string &file, const int dim);
