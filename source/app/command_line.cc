@@ -106,6 +106,9 @@ namespace tissuefem
            "                'Output/Checkpoint interval'); with the same\n"
            "                FILE.prm and process count the outputs equal\n"
            "                those of an uninterrupted run\n"
+           "  --view        show the run in a web browser as it goes (the\n"
+           "                same as --set 'Output/Live view/Port=0'; the\n"
+           "                address is printed)\n"
            "SIGINT and SIGTERM end a run after the current step, with its\n"
            "outputs and a checkpoint written.\n"
            "Parallel runs: mpirun -np P tissuefem FILE.prm\n"
@@ -189,6 +192,8 @@ namespace tissuefem
                 throw InputError("--set needs 'Subsection/Name=value'");
               line.overrides.push_back(args[++i]);
             }
+          else if (a == "--view")
+            line.overrides.push_back("Output/Live view/Port=0");
           else if (a.rfind("--set=", 0) == 0)
             line.overrides.push_back(a.substr(6));
           else if (a.rfind("--", 0) == 0)

@@ -1,0 +1,116 @@
+#pragma once
+
+#include <tissuefem/output/boundary_surface.h>
+#include <tissuefem/output/view_server.h>
+#include <tissuefem/postprocess/interface.h>
+
+#include <boost/signals2/connection.hpp>
+
+#include <chrono>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace tissuefem::postprocess
+{
+  /**
+   * The live view ('Output/Live view'): a web page served by the run
+   * itself (output::ViewServer, on process 0) that shows the deformed
+   * surface as the run goes, coloured by a field the page picks, with
+   * charts of the step's wall time against the real-time budget, the
+   * simulated time per wall-clock second and the energies, and controls
+   * (play, pause, one step, pace to the wall clock or as fast as it can).
+   *
+   * The run never waits for a page: after a step, if a page is open and a
+   * frame is due ('Frame rate'), the surface's displacements (and the
+   * picked field, averaged from the cells around each vertex) are gathered
+   * from every process and handed to the server, which sends each page the
+   * newest frame it can take. The topology is sent once, and again after a
+   * mesh change (the triangulation's change signal).
+   *
+   * What pages send, and what the run does with it (text commands, from
+   * the driving page): 'pause', 'play', 'step' (one step, then pause),
+   * 'pace wall' / 'pace fast', 'field NAME'. Pausing and pacing happen
+   * here, after a step's outputs, so every process waits together at the
+   * next collective operation. A page closing while the run is paused lets
+   * it go on.
+   *
+   * Messages (little-endian) are documented in doc/live_view.md.
+   */
+  template <int dim>
+  class LiveView : public Interface<dim>
+  {
+  public:
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    explicit LiveView(ParameterHandler &prm);
+    ~LiveView() override;
+
+    /// Checks the parameters against the scene (a surface needs dim >= 2).
+    void
+    initialize(const Context<dim> &c) override;
+
+    /// Starts the server and writes its address to <directory>/live_view.
+    void
+    open() override;
+
+    void
+    restore(const std::vector<std::string> &lines) override;
+
+    void
+    execute(const Step<dim> &step) override;
+
+    void
+    finish(const time::State &state,
+           const RunTotals   &totals,
+           output::RunRecord &record) override;
+
+  private:
+    /// 'Port' (-1: no live view), 'Address', 'Frame rate', 'Wait for page'.
+    int         port = -1;
+    std::string address;
+    double      frame_rate = 60, wait_for_page = 0;
+    /// Pacing to the wall clock (else as fast as it can), and paused.
+    bool pace_wall = true, paused = false, step_once = false;
+    /// The field the pages colour by (index into field_names).
+    unsigned int             field = 0;
+    std::vector<std::string> field_names;
+    /// What the greeting names: integrator, models, time step, budget.
+    std::string integrator, models;
+    double      time_step = 0, budget = 0;
+
+    output::ViewServer::Settings                  settings;
+    std::unique_ptr<output::ViewServer>           server;
+    std::unique_ptr<output::BoundarySurface<dim>> surface;
+    boost::signals2::scoped_connection            mesh_changed;
+    bool                                          topology_sent = false;
+    unsigned int                                  frames        = 0;
+    std::chrono::steady_clock::time_point         last_frame;
+    /// Pacing: wall clock and simulated time when pacing started.
+    std::chrono::steady_clock::time_point pace_wall_origin;
+    double                                pace_time_origin = 0;
+    /// For the simulated time per wall-clock second.
+    std::chrono::steady_clock::time_point run_start;
+    double                                run_start_time = 0;
+
+    /// Root: applies the driving page's commands.
+    void
+    apply_commands(const double time);
+    /// Collective: builds and sends the topology (root sends).
+    void
+    send_topology();
+    /// Collective: gathers the surface's values and sends a frame.
+    void
+    send_frame(const Step<dim> &step, const double frame_seconds);
+    /// Root: waits while paused, then paces to the wall clock.
+    void
+    hold(const double time);
+    /// Prints the server's log lines (root).
+    void
+    print_log();
+    /// The text message each page gets first.
+    std::string
+    greeting() const;
+  };
+} // namespace tissuefem::postprocess

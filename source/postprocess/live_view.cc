@@ -1,0 +1,459 @@
+#include <deal.II/base/mpi.h>
+
+#include <tissuefem/base/parallel.h>
+#include <tissuefem/output/output_files.h>
+#include <tissuefem/postprocess/live_view.h>
+#include <tissuefem/solid/quantities.h>
+
+#include <cmath>
+#include <sstream>
+#include <thread>
+
+#ifndef TISSUEFEM_WEB_DIRECTORY
+#define TISSUEFEM_WEB_DIRECTORY "web"
+#endif
+
+namespace tissuefem::postprocess
+{
+  namespace
+  {
+    using Clock = std::chrono::steady_clock;
+
+    double
+    seconds_since(const Clock::time_point start)
+    {
+      return std::chrono::duration<double>(Clock::now() - start).count();
+    }
+
+    /// Appends @p value's bytes (the machine's order: little-endian on the
+    /// machines this runs on, which the page's DataView reads).
+    template <typename T>
+    void
+    put(std::string &bytes, const T value)
+    {
+      bytes.append(reinterpret_cast<const char *>(&value), sizeof(T));
+    }
+
+    template <typename T>
+    void
+    put_all(std::string &bytes, const std::vector<T> &values)
+    {
+      bytes.append(reinterpret_cast<const char *>(values.data()),
+                   values.size() * sizeof(T));
+    }
+
+    /// A number for JSON (no inf or nan there).
+    std::string
+    json_number(const double x)
+    {
+      if (!std::isfinite(x))
+        return "null";
+      std::ostringstream s;
+      s.precision(10);
+      s << x;
+      return s.str();
+    }
+  } // namespace
+
+
+  template <int dim>
+  void
+  LiveView<dim>::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Output");
+    prm.enter_subsection("Live view");
+    prm.declare_entry(
+      "Port",
+      "-1",
+      Patterns::Integer(-1, 65535),
+      "A web page showing the run as it goes (open the printed address in "
+      "a browser): the deformed surface coloured by a field, charts of the "
+      "step's wall time and energies, play, pause, one step. -1 (default): "
+      "none; 0: any free port; else this TCP port. The address is printed "
+      "and written to <Output directory>/live_view. The command-line "
+      "option --view sets 0.");
+    prm.declare_entry("Address",
+                      "127.0.0.1",
+                      Patterns::Anything(),
+                      "The IP address the page is served on: 127.0.0.1 "
+                      "(default) serves this machine only; any other "
+                      "address (0.0.0.0: every interface) lets other "
+                      "machines see and drive the run, with a warning.");
+    prm.declare_entry("Frame rate",
+                      "60",
+                      Patterns::Double(1, 240),
+                      "At most this many frames per second go to a page "
+                      "(1/s); a page that cannot take them all skips to the "
+                      "newest.");
+    prm.declare_entry("Pace",
+                      "wall clock",
+                      Patterns::Selection("wall clock|as fast as possible"),
+                      "How fast the run goes while the view is on: 'wall "
+                      "clock' waits so that simulated time passes no faster "
+                      "than real time (a run slower than real time is not "
+                      "slowed further); 'as fast as possible' never waits. "
+                      "The page can switch.");
+    prm.declare_entry("Start paused",
+                      "false",
+                      Patterns::Bool(),
+                      "Whether the run waits after its initial state until "
+                      "a page presses play or step.");
+    prm.declare_entry("Wait for page",
+                      "0",
+                      Patterns::Double(0, 3600),
+                      "Seconds to wait for a page to connect before the "
+                      "first step (0: start at once).");
+    prm.declare_entry("Web directory",
+                      "",
+                      Patterns::Anything(),
+                      "Where the page's files (index.html, view.js, "
+                      "view.css) are; empty (default): web/ of the sources "
+                      "this program was built from.");
+    prm.declare_entry("three.js directory",
+                      "/usr/share/javascript/three",
+                      Patterns::Anything(),
+                      "Where three.js is installed (Debian's libjs-three): "
+                      "build/three.min.js and "
+                      "examples/js/controls/OrbitControls.js are served from "
+                      "there.");
+    prm.leave_subsection();
+    prm.leave_subsection();
+  }
+
+
+  template <int dim>
+  LiveView<dim>::LiveView(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Output");
+    prm.enter_subsection("Live view");
+    port                   = prm.get_integer("Port");
+    address                = prm.get("Address");
+    frame_rate             = prm.get_double("Frame rate");
+    pace_wall              = prm.get("Pace") == "wall clock";
+    paused                 = prm.get_bool("Start paused");
+    wait_for_page          = prm.get_double("Wait for page");
+    settings.web_directory = prm.get("Web directory");
+    if (settings.web_directory.empty())
+      settings.web_directory = TISSUEFEM_WEB_DIRECTORY;
+    settings.three_directory = prm.get("three.js directory");
+    prm.leave_subsection();
+    prm.leave_subsection();
+    prm.enter_subsection("Time integration");
+    integrator = prm.get("Integrator");
+    time_step  = prm.get_double("Time step");
+    budget     = prm.get_double("Real-time budget");
+    prm.leave_subsection();
+    prm.enter_subsection("Materials");
+    models = prm.get("Model");
+    prm.leave_subsection();
+  }
+
+
+  template <int dim>
+  LiveView<dim>::~LiveView() = default;
+
+
+  template <int dim>
+  void
+  LiveView<dim>::initialize(const Context<dim> &c)
+  {
+    Interface<dim>::initialize(c);
+    if (port < 0)
+      return;
+    require(dim >= 2,
+            "Output/Live view/Port",
+            "the live view shows a surface; a 1D body has none (set -1)");
+    field_names = {"displacement", "J", "von Mises"};
+    if (c.scene.obstacle_contact)
+      field_names.push_back("contact pressure");
+    // A new mesh needs a new surface; the next frame sends it.
+    mesh_changed = c.scene.triangulation.signals.any_change.connect(
+      [this]() { topology_sent = false; });
+  }
+
+
+  template <int dim>
+  void
+  LiveView<dim>::open()
+  {
+    if (port < 0)
+      return;
+    settings.address    = address;
+    settings.port       = port;
+    settings.frame_rate = frame_rate;
+    if (parallel_tools::is_root())
+      {
+        server = std::make_unique<output::ViewServer>(settings);
+        server->set_greeting(greeting());
+        const std::string url
+          = "http://" + address + ":" + std::to_string(server->port()) + "/";
+        output::write_whole(this->context->directory + "/live_view",
+                            [&](std::ostream &out) { out << url << '\n'; });
+        auto &screen = parallel_tools::screen();
+        screen << "live view: " << url << " (open it in a browser)"
+               << std::endl;
+        if (address != "127.0.0.1" && address != "::1")
+          screen << "live view: WARNING: served on " << address
+                 << ", not only to this machine: anyone who reaches it can "
+                    "see and drive this run"
+                 << std::endl;
+      }
+    run_start = pace_wall_origin = Clock::now();
+  }
+
+
+  template <int dim>
+  void
+  LiveView<dim>::restore(const std::vector<std::string> &)
+  {
+    open();
+  }
+
+
+  template <int dim>
+  std::string
+  LiveView<dim>::greeting() const
+  {
+    std::string fields;
+    for (const auto &name : field_names)
+      fields += (fields.empty() ? "" : ",") + output::json_quote(name);
+    return std::string("{\"type\":\"scene\",\"dimension\":")
+           + std::to_string(dim) + ",\"description\":"
+           + output::json_quote(this->context->scene.describe())
+           + ",\"integrator\":" + output::json_quote(integrator)
+           + ",\"materials\":" + output::json_quote(models) + ",\"directory\":"
+           + output::json_quote(this->context->directory) + ",\"time_step\":"
+           + json_number(time_step) + ",\"budget\":" + json_number(budget)
+           + ",\"fields\":[" + fields + "],\"field\":" + std::to_string(field)
+           + ",\"frame_rate\":" + json_number(frame_rate) + "}";
+  }
+
+
+  template <int dim>
+  void
+  LiveView<dim>::execute(const Step<dim> &step)
+  {
+    if (port < 0)
+      return;
+    const auto start = Clock::now();
+    // Root decides; every process follows: [send a frame, field].
+    std::vector<int> decision(2, 0);
+    if (parallel_tools::is_root())
+      {
+        if (step.number == 0 && wait_for_page > 0)
+          for (const auto until
+               = Clock::now() + std::chrono::duration<double>(wait_for_page);
+               server->pages() == 0 && Clock::now() < until;)
+            std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        apply_commands(step.state.time);
+        const bool due = seconds_since(last_frame) >= 1 / frame_rate;
+        decision       = {(step.number == 0 || !topology_sent || paused
+                     || (server->pages() > 0 && due))
+                            ? 1
+                            : 0,
+                    int(field)};
+        print_log();
+      }
+    decision
+      = Utilities::MPI::broadcast(parallel_tools::communicator(), decision);
+    field = decision[1];
+    if (!topology_sent)
+      send_topology();
+    if (decision[0])
+      send_frame(step, seconds_since(start));
+    if (parallel_tools::is_root())
+      hold(step.state.time);
+  }
+
+
+  template <int dim>
+  void
+  LiveView<dim>::apply_commands(const double time)
+  {
+    for (const auto &command : server->take_commands())
+      {
+        std::istringstream words(command.text);
+        std::string        verb, argument;
+        words >> verb;
+        std::getline(words >> std::ws, argument);
+        std::string refusal;
+        if (verb == "pause")
+          paused = true;
+        else if (verb == "play" || verb == "step")
+          {
+            paused    = false;
+            step_once = verb == "step";
+          }
+        else if (verb == "pace" && (argument == "wall" || argument == "fast"))
+          pace_wall = argument == "wall";
+        else if (verb == "field")
+          {
+            const auto f
+              = std::find(field_names.begin(), field_names.end(), argument);
+            if (f == field_names.end())
+              refusal = "no field '" + argument.substr(0, 40) + "'";
+            else
+              field = f - field_names.begin();
+          }
+        else
+          refusal = "unknown command '" + command.text.substr(0, 40) + "'";
+        if (!refusal.empty())
+          server->send_to(command.page,
+                          "{\"type\":\"error\",\"message\":"
+                            + output::json_quote(refusal) + "}");
+        // Pacing starts again from now.
+        pace_wall_origin = Clock::now();
+        pace_time_origin = time;
+      }
+  }
+
+
+  template <int dim>
+  void
+  LiveView<dim>::send_topology()
+  {
+    surface = std::make_unique<output::BoundarySurface<dim>>(
+      this->context->scene.triangulation);
+    topology_sent = true;
+    if (!parallel_tools::is_root())
+      return;
+    auto bytes = std::make_shared<std::string>("TFT1");
+    put<std::uint32_t>(*bytes, surface->vertices.size());
+    put<std::uint32_t>(*bytes, surface->triangles.size() / 3);
+    put<std::uint32_t>(*bytes, dim);
+    put_all(*bytes, surface->positions);
+    put_all(*bytes, surface->triangles);
+    server->set_topology(std::move(bytes));
+  }
+
+
+  template <int dim>
+  void
+  LiveView<dim>::send_frame(const Step<dim> &step, const double waited)
+  {
+    const auto                 start = Clock::now();
+    const auto                &scene = this->context->scene;
+    const auto                &solid = *scene.solid;
+    std::vector<Vector<float>> cells;
+    const std::string         &name = field_names[field];
+    if (name == "J" || name == "von Mises")
+      {
+        Vector<float> jacobian, von_mises;
+        solid::cell_fields(*scene.discretization,
+                           solid.get_materials(),
+                           solid.fibres(),
+                           solid.deformation(step.u_ghosted).get(),
+                           step.u_ghosted,
+                           jacobian,
+                           von_mises);
+        cells.push_back(name == "J" ? jacobian : von_mises);
+      }
+    else if (name == "contact pressure")
+      {
+        Vector<float> pressure, gap;
+        scene.obstacle_contact->cell_fields(step.u_ghosted,
+                                            step.state.time,
+                                            pressure,
+                                            gap);
+        cells.push_back(pressure);
+      }
+    std::vector<float>              displacement;
+    std::vector<std::vector<float>> values;
+    surface->gather(scene.discretization->dof_handler,
+                    step.u_ghosted,
+                    cells,
+                    displacement,
+                    values);
+    if (!parallel_tools::is_root())
+      return;
+    const double frame_ms = 1e3 * (seconds_since(start) + waited);
+    auto         bytes    = std::make_shared<std::string>("TFF1");
+    put<std::uint32_t>(*bytes, step.number);
+    put<std::uint32_t>(*bytes, surface->vertices.size());
+    put<std::uint32_t>(*bytes, field);
+    put<std::uint32_t>(*bytes, (paused ? 1 : 0) | (pace_wall ? 2 : 0));
+    const double wall = seconds_since(run_start);
+    for (const double x :
+         {step.state.time,
+          step.report.dt,
+          step.report.step_seconds,
+          step.report.stored_energy,
+          step.report.kinetic_energy,
+          wall > 0 ? (step.state.time - run_start_time) / wall : 0.,
+          frame_ms,
+          budget})
+      put<double>(*bytes, std::isfinite(x) ? x : 0.);
+    put_all(*bytes, displacement);
+    if (!values.empty())
+      put_all(*bytes, values[0]);
+    server->set_frame(std::move(bytes));
+    last_frame = Clock::now();
+    ++frames;
+  }
+
+
+  template <int dim>
+  void
+  LiveView<dim>::hold(const double time)
+  {
+    while (paused && server->pages() > 0)
+      {
+        server->wait(0.1);
+        apply_commands(time);
+        print_log();
+      }
+    if (step_once)
+      {
+        // The next step runs, then the run pauses again.
+        step_once        = false;
+        paused           = server->pages() > 0;
+        pace_wall_origin = Clock::now();
+        pace_time_origin = time;
+        return;
+      }
+    paused = false;
+    if (!pace_wall)
+      return;
+    const double ahead
+      = (time - pace_time_origin) - seconds_since(pace_wall_origin);
+    if (ahead > 0)
+      std::this_thread::sleep_for(std::chrono::duration<double>(ahead));
+  }
+
+
+  template <int dim>
+  void
+  LiveView<dim>::print_log()
+  {
+    for (const auto &line : server->take_log())
+      parallel_tools::screen() << line << std::endl;
+  }
+
+
+  template <int dim>
+  void
+  LiveView<dim>::finish(const time::State &state,
+                        const RunTotals &,
+                        output::RunRecord &)
+  {
+    if (!server)
+      return;
+    server->finish("{\"type\":\"end\",\"time\":" + json_number(state.time)
+                   + ",\"frames\":" + std::to_string(frames) + "}");
+    print_log();
+    parallel_tools::screen()
+      << "live view: " << frames << " frames sent" << std::endl;
+    server->close();
+    print_log();
+    server.reset();
+  }
+
+  template class LiveView<1>;
+  template class LiveView<2>;
+  template class LiveView<3>;
+
+  TISSUEFEM_REGISTER_POSTPROCESSOR(
+    LiveView,
+    "live view",
+    "a web page showing the run as it goes ('Output/Live view')");
+} // namespace tissuefem::postprocess

@@ -1,0 +1,148 @@
+"""A WebSocket client from the standard library alone (RFC 6455), for the
+live view's tests: the handshake, masked frames out, frames in, and the
+means to send broken ones (unmasked, oversized, bad opcodes)."""
+import base64
+import hashlib
+import json
+import os
+import socket
+import struct
+import subprocess
+import time
+
+
+def start_run(exe, scene, work, settings, processes=1):
+    """Starts tissuefem on SCENE in WORK with --set SETTINGS (on PROCESSES
+    MPI processes); returns the process and the page's address (from
+    results/live_view)."""
+    os.makedirs(work, exist_ok=True)
+    command = [exe, scene]
+    if processes > 1:
+        command = ["mpirun", "--oversubscribe", "-np", str(processes)] + command
+    for s in settings:
+        command += ["--set", s]
+    log = open(os.path.join(work, "run.log"), "w")
+    run = subprocess.Popen(command, cwd=work, stdout=log,
+                           stderr=subprocess.STDOUT)
+    address = os.path.join(work, "results", "live_view")
+    for _ in range(300):
+        if os.path.exists(address):
+            break
+        if run.poll() is not None:
+            raise SystemExit("tissuefem exited early: "
+                             + open(os.path.join(work, "run.log")).read())
+        time.sleep(0.05)
+    url = open(address).read().strip()
+    host, port = url[len("http://"):].rstrip("/").split(":")
+    return run, host, int(port)
+
+
+def http_get(host, port, target, extra=b""):
+    """One raw request; returns (status code, body bytes)."""
+    with socket.create_connection((host, port), timeout=10) as s:
+        s.sendall(b"GET " + target.encode() + b" HTTP/1.1\r\nHost: x\r\n"
+                  b"Connection: close\r\n" + extra + b"\r\n")
+        data = b""
+        while True:
+            chunk = s.recv(65536)
+            if not chunk:
+                break
+            data += chunk
+    head, _, body = data.partition(b"\r\n\r\n")
+    return int(head.split()[1]), body
+
+
+class WebSocket:
+    def __init__(self, host, port, path="/ws"):
+        self.sock = socket.create_connection((host, port), timeout=10)
+        key = base64.b64encode(os.urandom(16))
+        self.sock.sendall(b"GET " + path.encode() + b" HTTP/1.1\r\n"
+                          b"Host: x\r\nUpgrade: websocket\r\n"
+                          b"Connection: Upgrade\r\nSec-WebSocket-Key: " + key
+                          + b"\r\nSec-WebSocket-Version: 13\r\n\r\n")
+        head = b""
+        while b"\r\n\r\n" not in head:
+            chunk = self.sock.recv(1)
+            if not chunk:
+                raise ConnectionError("closed during the handshake")
+            head += chunk
+        self.status = int(head.split()[1])
+        accept = base64.b64encode(hashlib.sha1(
+            key + b"258EAFA5-E914-47DA-95CA-C5AB0DC85B11").digest())
+        if self.status == 101 and accept not in head:
+            raise ConnectionError("wrong Sec-WebSocket-Accept")
+        self.buffer = b""
+
+    def raw(self, data):
+        self.sock.sendall(data)
+
+    @staticmethod
+    def frame(opcode, payload, mask=True, fin=True):
+        first = (0x80 if fin else 0) | opcode
+        n = len(payload)
+        if n < 126:
+            head = struct.pack("!BB", first, (0x80 if mask else 0) | n)
+        elif n < 65536:
+            head = struct.pack("!BBH", first, (0x80 if mask else 0) | 126, n)
+        else:
+            head = struct.pack("!BBQ", first, (0x80 if mask else 0) | 127, n)
+        if not mask:
+            return head + payload
+        key = os.urandom(4)
+        return head + key + bytes(b ^ key[i % 4] for i, b in
+                                  enumerate(payload))
+
+    def send_text(self, text):
+        self.raw(self.frame(1, text.encode()))
+
+    def _read(self, n):
+        while len(self.buffer) < n:
+            chunk = self.sock.recv(1 << 20)
+            if not chunk:
+                raise ConnectionError("closed")
+            self.buffer += chunk
+        data, self.buffer = self.buffer[:n], self.buffer[n:]
+        return data
+
+    def receive(self):
+        """The next message: (opcode, payload); opcode 8 is a close."""
+        first, second = self._read(2)
+        n = second & 0x7F
+        if n == 126:
+            n = struct.unpack("!H", self._read(2))[0]
+        elif n == 127:
+            n = struct.unpack("!Q", self._read(8))[0]
+        payload = self._read(n)
+        return first & 0x0F, payload
+
+    def close(self):
+        try:
+            self.raw(self.frame(8, struct.pack("!H", 1000)))
+        except OSError:
+            pass
+        self.sock.close()
+
+
+def decode(opcode, payload):
+    """A message as ('text', dict), ('topology', dict) or ('frame', dict)."""
+    if opcode == 1:
+        return "text", json.loads(payload)
+    magic = payload[:4]
+    if magic == b"TFT1":
+        n, m, dim = struct.unpack_from("<III", payload, 4)
+        x = struct.unpack_from("<%df" % (3 * n), payload, 16)
+        tri = struct.unpack_from("<%dI" % (3 * m), payload, 16 + 12 * n)
+        return "topology", {"n": n, "m": m, "dim": dim, "x": x, "tri": tri}
+    if magic == b"TFF1":
+        step, n, field, flags = struct.unpack_from("<IIII", payload, 4)
+        numbers = struct.unpack_from("<8d", payload, 20)
+        u = struct.unpack_from("<%df" % (3 * n), payload, 84)
+        values = (struct.unpack_from("<%df" % n, payload, 84 + 12 * n)
+                  if field > 0 else None)
+        names = ["time", "dt", "step_seconds", "stored", "kinetic", "rate",
+                 "frame_ms", "budget"]
+        frame = dict(zip(names, numbers))
+        frame.update(step=step, n=n, field=field, flags=flags, u=u,
+                     values=values, bytes=len(payload))
+        return "frame", frame
+    return "unknown", payload

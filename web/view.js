@@ -1,0 +1,255 @@
+// The live view's page: draws the frames the run sends over its WebSocket
+// (message layouts in doc/live_view.md) with three.js r111, and sends the
+// driving page's commands back.
+'use strict';
+
+const units = {
+  'displacement': 'length units',
+  'J': 'det F (volume ratio)',
+  'von Mises': 'stress units',
+  'contact pressure': 'stress units',
+};
+
+const view = {
+  scene: null,      // the run's greeting
+  drives: false,
+  topology: null,   // {n, reference: Float32Array}
+  pending: null,    // the newest frame not yet drawn
+  lastStep: -1,
+  fresh: 0,         // frames with a new step drawn in the current second
+  freshPerSecond: 0,
+  framesReceived: 0,
+  bytesPerFrame: 0,
+  ended: false,
+  history: [],      // per frame: [step ms, budget ms, rate, stored, kinetic]
+};
+// For tests and benchmarks (headless browser): what the page has drawn.
+window.tissuefem = view;
+
+const $ = (id) => document.getElementById(id);
+const container = $('view');
+const renderer = new THREE.WebGLRenderer({antialias: true, preserveDrawingBuffer: true});
+renderer.setPixelRatio(window.devicePixelRatio);
+container.appendChild(renderer.domElement);
+const scene3 = new THREE.Scene();
+scene3.background = new THREE.Color(0x1d2026);
+const camera = new THREE.PerspectiveCamera(40, 1, 1e-3, 1e3);
+const controls = new THREE.OrbitControls(camera, renderer.domElement);
+scene3.add(new THREE.HemisphereLight(0xffffff, 0x303040, 0.7));
+const sun = new THREE.DirectionalLight(0xffffff, 0.6);
+camera.add(sun);
+sun.position.set(1, 1, 2);
+scene3.add(camera);
+
+let mesh = null, outline = null;
+
+function resize() {
+  const w = container.clientWidth, h = container.clientHeight;
+  renderer.setSize(w, h);
+  camera.aspect = w / Math.max(h, 1);
+  camera.updateProjectionMatrix();
+}
+window.addEventListener('resize', resize);
+resize();
+
+// A perceptually ordered colour map (viridis, 5 stops, linear between).
+const stops = [[68, 1, 84], [59, 82, 139], [33, 145, 140], [94, 201, 98], [253, 231, 37]];
+function colour(s, out, i) {
+  s = Math.min(Math.max(s, 0), 1) * (stops.length - 1);
+  const k = Math.min(Math.floor(s), stops.length - 2), f = s - k;
+  for (let c = 0; c < 3; ++c)
+    out[3 * i + c] = ((1 - f) * stops[k][c] + f * stops[k + 1][c]) / 255;
+}
+(function drawLegendBar() {
+  const bar = $('legend-bar'), g = bar.getContext('2d'), rgb = new Float32Array(3);
+  for (let x = 0; x < bar.width; ++x) {
+    colour(x / (bar.width - 1), rgb, 0);
+    g.fillStyle = `rgb(${255 * rgb[0]},${255 * rgb[1]},${255 * rgb[2]})`;
+    g.fillRect(x, 0, 1, bar.height);
+  }
+})();
+
+function setTopology(buffer) {
+  const d = new DataView(buffer);
+  const n = d.getUint32(4, true), m = d.getUint32(8, true);
+  const reference = new Float32Array(buffer.slice(16, 16 + 12 * n));
+  const index = new Uint32Array(buffer.slice(16 + 12 * n, 16 + 12 * n + 12 * m));
+  if (mesh) { scene3.remove(mesh); mesh.geometry.dispose(); }
+  if (outline) { scene3.remove(outline); outline.geometry.dispose(); }
+  const geometry = new THREE.BufferGeometry();
+  geometry.setIndex(new THREE.BufferAttribute(index, 1));
+  geometry.setAttribute('position', new THREE.BufferAttribute(reference.slice(), 3));
+  geometry.setAttribute('color', new THREE.BufferAttribute(new Float32Array(3 * n), 3));
+  geometry.computeVertexNormals();
+  mesh = new THREE.Mesh(geometry, new THREE.MeshPhongMaterial({
+    vertexColors: THREE.VertexColors, side: THREE.DoubleSide, shininess: 20}));
+  scene3.add(mesh);
+  const still = new THREE.BufferGeometry();
+  still.setIndex(new THREE.BufferAttribute(index, 1));
+  still.setAttribute('position', new THREE.BufferAttribute(reference, 3));
+  outline = new THREE.LineSegments(new THREE.EdgesGeometry(still, 30),
+                                   new THREE.LineBasicMaterial({color: 0x8899aa}));
+  outline.visible = $('outline').checked;
+  scene3.add(outline);
+  view.topology = {n: n, triangles: m, reference: reference};
+  // Frame the body.
+  geometry.computeBoundingSphere();
+  const s = geometry.boundingSphere;
+  controls.target.copy(s.center);
+  camera.near = s.radius / 100;
+  camera.far = s.radius * 100;
+  camera.position.set(s.center.x + 0.3 * s.radius, s.center.y - 1.2 * s.radius,
+                      s.center.z + 3 * s.radius);
+  if (view.scene && view.scene.dimension === 2)
+    camera.position.set(s.center.x, s.center.y, s.center.z + 3 * s.radius);
+  camera.up.set(0, 1, 0);
+  camera.updateProjectionMatrix();
+  controls.update();
+}
+
+function decodeFrame(buffer) {
+  const d = new DataView(buffer);
+  const n = d.getUint32(8, true);
+  const header = 20, numbers = [];
+  for (let k = 0; k < 8; ++k) numbers.push(d.getFloat64(header + 8 * k, true));
+  const at = header + 64;
+  const field = d.getUint32(12, true);
+  return {
+    step: d.getUint32(4, true), n: n, field: field, flags: d.getUint32(16, true),
+    time: numbers[0], dt: numbers[1], stepSeconds: numbers[2], stored: numbers[3],
+    kinetic: numbers[4], rate: numbers[5], frameMs: numbers[6], budget: numbers[7],
+    u: new Float32Array(buffer, at, 3 * n),
+    values: field > 0 ? new Float32Array(buffer, at + 12 * n, n) : null,
+  };
+}
+
+function drawFrame(f) {
+  if (!mesh || !view.topology || f.n !== view.topology.n) return;
+  const position = mesh.geometry.attributes.position.array;
+  const reference = view.topology.reference, rgb = mesh.geometry.attributes.color.array;
+  let values = f.values;
+  if (!values) {
+    values = new Float32Array(f.n);
+    for (let i = 0; i < f.n; ++i)
+      values[i] = Math.hypot(f.u[3 * i], f.u[3 * i + 1], f.u[3 * i + 2]);
+  }
+  let lo = Infinity, hi = -Infinity;
+  for (let i = 0; i < f.n; ++i) { lo = Math.min(lo, values[i]); hi = Math.max(hi, values[i]); }
+  const span = hi > lo ? hi - lo : 1;
+  for (let i = 0; i < 3 * f.n; ++i) position[i] = reference[i] + f.u[i];
+  for (let i = 0; i < f.n; ++i) colour((values[i] - lo) / span, rgb, i);
+  mesh.geometry.attributes.position.needsUpdate = true;
+  mesh.geometry.attributes.color.needsUpdate = true;
+  mesh.geometry.computeVertexNormals();
+  const name = view.scene ? view.scene.fields[f.field] : '';
+  $('legend-min').textContent = lo.toPrecision(3);
+  $('legend-max').textContent = hi.toPrecision(3);
+  $('legend-unit').textContent = name + ' (' + (units[name] || '') + ')';
+  $('n-step').textContent = f.step;
+  $('n-time').textContent = f.time.toPrecision(6) + ' (time units)';
+  $('n-wall').textContent = (1e3 * f.stepSeconds).toFixed(2) + ' ms (budget ' +
+                            (1e3 * f.budget).toFixed(1) + ' ms)';
+  $('n-rate').textContent = f.rate.toPrecision(3);
+  $('n-stored').textContent = f.stored.toPrecision(4);
+  $('n-kinetic').textContent = f.kinetic.toPrecision(4);
+  $('play').disabled = !view.drives || !(f.flags & 1);
+  $('pause').disabled = !view.drives || (f.flags & 1);
+  $('pace').value = (f.flags & 2) ? 'wall' : 'fast';
+  if (f.step !== view.lastStep) {
+    ++view.fresh;
+    view.lastStep = f.step;
+    view.history.push([1e3 * f.stepSeconds, 1e3 * f.budget, f.rate, f.stored, f.kinetic]);
+    if (view.history.length > 300) view.history.shift();
+  }
+}
+
+// A line chart of columns @p series of view.history, with a dashed level.
+function chart(id, series, colours, level) {
+  const c = $(id), g = c.getContext('2d'), h = view.history;
+  g.clearRect(0, 0, c.width, c.height);
+  if (h.length < 2) return;
+  let hi = level || 0;
+  for (const row of h) for (const s of series) hi = Math.max(hi, row[s]);
+  hi = hi > 0 ? 1.1 * hi : 1;
+  const x = (k) => k * (c.width - 1) / (h.length - 1), y = (v) => c.height - 1 - v / hi * (c.height - 12);
+  series.forEach((s, j) => {
+    g.strokeStyle = colours[j];
+    g.beginPath();
+    h.forEach((row, k) => (k ? g.lineTo(x(k), y(row[s])) : g.moveTo(x(k), y(row[s]))));
+    g.stroke();
+  });
+  if (level) {
+    g.setLineDash([4, 3]); g.strokeStyle = '#ccc';
+    g.beginPath(); g.moveTo(0, y(level)); g.lineTo(c.width, y(level)); g.stroke();
+    g.setLineDash([]);
+  }
+  g.fillStyle = '#aab';
+  g.fillText(hi.toPrecision(3), 2, 10);
+}
+
+function animate() {
+  requestAnimationFrame(animate);
+  if (view.pending) { drawFrame(view.pending); view.pending = null; }
+  controls.update();
+  renderer.render(scene3, camera);
+}
+
+setInterval(() => {
+  view.freshPerSecond = view.fresh;
+  view.fresh = 0;
+  $('n-fps').textContent = view.freshPerSecond;
+  $('n-bytes').textContent = view.bytesPerFrame + ' B';
+  const last = view.history[view.history.length - 1];
+  chart('chart-wall', [0], ['#7c7'], last ? last[1] : 0);
+  chart('chart-rate', [2], ['#c7c'], 1);
+  chart('chart-energy', [3, 4], ['#f93', '#6af'], 0);
+}, 1000);
+
+const socket = new WebSocket(`ws://${location.host}/ws`);
+socket.binaryType = 'arraybuffer';
+function send(text) { if (socket.readyState === 1) socket.send(text); }
+socket.onmessage = (event) => {
+  if (typeof event.data !== 'string') {
+    const magic = String.fromCharCode(...new Uint8Array(event.data, 0, 4));
+    if (magic === 'TFT1') setTopology(event.data);
+    else if (magic === 'TFF1') {
+      ++view.framesReceived;
+      view.bytesPerFrame = event.data.byteLength;
+      view.pending = decodeFrame(event.data);
+    }
+    return;
+  }
+  const message = JSON.parse(event.data);
+  if (message.type === 'scene') {
+    view.scene = message;
+    $('description').textContent = message.description + ', integrator \'' +
+      message.integrator + '\', material ' + message.materials + ', time step ' +
+      message.time_step + ', output in ' + message.directory + '/';
+    const select = $('field');
+    select.innerHTML = '';
+    message.fields.forEach((name) => select.add(new Option(name, name)));
+    select.selectedIndex = message.field;
+  } else if (message.type === 'role') {
+    view.drives = message.drives;
+    $('connection').textContent = message.drives ? 'connected: this page drives the run'
+                                                 : 'connected: watching (another page drives)';
+    $('connection').className = message.drives ? '' : 'watching';
+    for (const id of ['play', 'pause', 'step', 'pace', 'field']) $(id).disabled = !message.drives;
+  } else if (message.type === 'error') {
+    $('status').textContent = message.message;
+  } else if (message.type === 'end') {
+    view.ended = true;
+    $('connection').textContent = 'the run ended at t = ' + message.time;
+  }
+};
+socket.onclose = () => {
+  if (!view.ended) $('connection').textContent = 'disconnected (the run ended or stopped)';
+};
+
+$('play').onclick = () => send('play');
+$('pause').onclick = () => send('pause');
+$('step').onclick = () => send('step');
+$('pace').onchange = (e) => send('pace ' + e.target.value);
+$('field').onchange = (e) => send('field ' + e.target.value);
+$('outline').onchange = (e) => { if (outline) outline.visible = e.target.checked; };
+animate();
