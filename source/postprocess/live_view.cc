@@ -4,6 +4,7 @@
 #include <tissuefem/output/output_files.h>
 #include <tissuefem/postprocess/live_view.h>
 #include <tissuefem/solid/quantities.h>
+#include <tissuefem/tool/mouse_grasp.h>
 
 #include <cmath>
 #include <sstream>
@@ -286,6 +287,8 @@ namespace tissuefem::postprocess
           }
         else if (verb == "pace" && (argument == "wall" || argument == "fast"))
           pace_wall = argument == "wall";
+        else if (verb == "grasp" || verb == "drag" || verb == "release")
+          refusal = mouse_command(verb, argument);
         else if (verb == "field")
           {
             const auto f
@@ -305,6 +308,43 @@ namespace tissuefem::postprocess
         pace_wall_origin = Clock::now();
         pace_time_origin = time;
       }
+  }
+
+
+  template <int dim>
+  std::string
+  LiveView<dim>::mouse_command(const std::string &verb,
+                               const std::string &argument)
+  {
+    const auto found = this->context->scene.tools.find("mouse");
+    auto      *mouse
+      = found == this->context->scene.tools.end()
+          ? nullptr
+          : dynamic_cast<tool::MouseGrasp<dim> *>(found->second.get());
+    if (!mouse)
+      return "the mouse cannot grasp in this scene (its own grasping tool "
+             "holds the tissue)";
+    if (verb == "release")
+      {
+        mouse->request_release();
+        return {};
+      }
+    // Three numbers (the page's z is 0 in 2D).
+    std::istringstream numbers(argument);
+    double             x[3];
+    if (!(numbers >> x[0] >> x[1] >> x[2]))
+      return verb + " needs three numbers";
+    if (verb == "grasp")
+      {
+        Point<dim> point;
+        for (unsigned int d = 0; d < dim; ++d)
+          point[d] = x[d];
+        return mouse->request_grasp(point);
+      }
+    Tensor<1, dim> drag;
+    for (unsigned int d = 0; d < dim; ++d)
+      drag[d] = x[d];
+    return mouse->request_drag(drag);
   }
 
 
@@ -357,7 +397,12 @@ namespace tissuefem::postprocess
                                             gap);
         cells.push_back(pressure);
       }
-    std::vector<float>              displacement;
+    // Collective; the statistics reuse the stored energy (Solid caches
+    // the last state's).
+    auto              &energies = *scene.solid;
+    const double       stored   = energies.stored_energy(step.state.u);
+    const double       kinetic  = energies.kinetic_energy(step.state.v);
+    std::vector<float> displacement;
     std::vector<std::vector<float>> values;
     surface->gather(scene.discretization->dof_handler,
                     step.u_ghosted,
@@ -377,8 +422,8 @@ namespace tissuefem::postprocess
          {step.state.time,
           step.report.dt,
           step.report.step_seconds,
-          step.report.stored_energy,
-          step.report.kinetic_energy,
+          stored,
+          kinetic,
           wall > 0 ? (step.state.time - run_start_time) / wall : 0.,
           frame_ms,
           budget})
@@ -386,6 +431,25 @@ namespace tissuefem::postprocess
     put_all(*bytes, displacement);
     if (!values.empty())
       put_all(*bytes, values[0]);
+    // The mouse: holding (0 or 1), the grasp point (reference), the
+    // displacement it imposes, the force on it after the previous step.
+    std::vector<float> mouse_block(10, 0.f);
+    const auto         found = scene.tools.find("mouse");
+    if (const auto *mouse
+        = found == scene.tools.end()
+            ? nullptr
+            : dynamic_cast<const tool::MouseGrasp<dim> *>(found->second.get());
+        mouse && mouse->holding())
+      {
+        mouse_block[0] = 1;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            mouse_block[1 + d] = mouse->point()[d];
+            mouse_block[4 + d] = mouse->displacement(step.state.time)[d];
+            mouse_block[7 + d] = mouse->force()[d];
+          }
+      }
+    put_all(*bytes, mouse_block);
     server->set_frame(std::move(bytes));
     last_frame = Clock::now();
     ++frames;

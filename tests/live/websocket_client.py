@@ -139,10 +139,30 @@ def decode(opcode, payload):
         u = struct.unpack_from("<%df" % (3 * n), payload, 84)
         values = (struct.unpack_from("<%df" % n, payload, 84 + 12 * n)
                   if field > 0 else None)
+        mouse = struct.unpack_from("<10f", payload,
+                                   84 + 12 * n + (4 * n if field > 0 else 0))
         names = ["time", "dt", "step_seconds", "stored", "kinetic", "rate",
                  "frame_ms", "budget"]
         frame = dict(zip(names, numbers))
         frame.update(step=step, n=n, field=field, flags=flags, u=u,
-                     values=values, bytes=len(payload))
+                     values=values, bytes=len(payload),
+                     holding=mouse[0] != 0, grasp_point=mouse[1:4],
+                     drag=mouse[4:7], force=mouse[7:10])
         return "frame", frame
     return "unknown", payload
+
+
+def same_summary(output, expected):
+    """Whether the summary file OUTPUT of a run with the live view equals
+    EXPECTED (that of the run without it) by numdiff, once the lines of the
+    mouse tool (which the live view adds) are taken out; those must all
+    read zero when no page grasped."""
+    lines = open(output).read().splitlines()
+    mouse = [l for l in lines if "tool force" in l]
+    if any(not l.endswith("tool force = 0 0 0") for l in mouse):
+        print("the mouse tool's force is not zero:", mouse[:3])
+        return False
+    with open(output + ".without_mouse", "w") as f:
+        f.write("\n".join(l for l in lines if "tool force" not in l) + "\n")
+    return subprocess.run(["numdiff", "-q", "-a", "1e-8", "-r", "1e-6",
+                           output + ".without_mouse", expected]).returncode == 0

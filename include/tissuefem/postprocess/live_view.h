@@ -30,10 +30,11 @@ namespace tissuefem::postprocess
    *
    * What pages send, and what the run does with it (text commands, from
    * the driving page): 'pause', 'play', 'step' (one step, then pause),
-   * 'pace wall' / 'pace fast', 'field NAME'. Pausing and pacing happen
-   * here, after a step's outputs, so every process waits together at the
-   * next collective operation. A page closing while the run is paused lets
-   * it go on.
+   * 'pace wall' / 'pace fast', 'field NAME', and for the mouse tool
+   * (tool/mouse_grasp.h) 'grasp X Y Z', 'drag DX DY DZ', 'release'. Pausing and
+   * pacing happen here, after a step's outputs, so every process waits together
+   * at the next collective operation. A page closing while the run is paused
+   * lets it go on.
    *
    * Messages (little-endian) are documented in doc/live_view.md.
    */
@@ -97,6 +98,10 @@ namespace tissuefem::postprocess
     /// Root: applies the driving page's commands.
     void
     apply_commands(const double time);
+    /// Root: passes 'grasp X Y Z', 'drag DX DY DZ' or 'release' to the
+    /// mouse tool; returns why not (empty: passed on).
+    std::string
+    mouse_command(const std::string &verb, const std::string &argument);
     /// Collective: builds and sends the topology (root sends).
     void
     send_topology();

@@ -1,0 +1,122 @@
+#pragma once
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+
+#include <tissuefem/tool/interface.h>
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace tissuefem::tool
+{
+  using namespace dealii;
+
+  /**
+   * The live view's mouse as a grasping tool: a page picks a point of the
+   * surface and drags it; the vertices within 'Mouse/Grasp radius' of the
+   * picked point (reference coordinates; at least the nearest vertex) are
+   * held and follow the drag, u = u_grasp + D(t), until the page lets go.
+   * It exists in runs with a live view ('Output/Live view/Port' >= 0, dim
+   * 2 or 3) whose scene has no grasping tool of its own (the solid holds
+   * one set of vertices at a time).
+   *
+   * The page's requests arrive on process 0 (request_grasp(), request_drag(),
+   * request_release(), from the live view), at any time; synchronize(),
+   * before each step and on every process, shares them. What a page may ask
+   * is bounded as for a device on the live port: a grasp point within the
+   * body's bounding box (grown by a tenth of its diameter), a drag of at
+   * most the body's diameter; the tool moves towards the dragged position
+   * by at most a tenth of the diameter per step, linearly over the step, so
+   * a fast mouse neither tears the mesh nor stalls the solver.
+   */
+  template <int dim>
+  class MouseGrasp : public Interface<dim>
+  {
+  public:
+    static void
+    declare_parameters(ParameterHandler &prm);
+
+    /// The tool, if the run has a live view and no grasping tool; else null.
+    static std::unique_ptr<Interface<dim>>
+    create(ParameterHandler &prm, const Triangulation<dim> &mesh);
+
+    MouseGrasp(const double radius, const Triangulation<dim> &mesh);
+
+    /// Process 0: a page grasps at @p point (reference coordinates).
+    /// Returns why not (empty: taken, from the next step on).
+    std::string
+    request_grasp(const Point<dim> &point);
+    /// Process 0: the grasped point's displacement since the grasp.
+    std::string
+    request_drag(const Tensor<1, dim> &displacement);
+    /// Process 0: lets go at the next step.
+    void
+    request_release();
+
+    /// Shares process 0's requests; sets the motion over the step to
+    /// @p time.
+    bool
+    synchronize(const double time) override;
+    bool
+    due(const double time) const override;
+    void
+    act(const time::State &state, solid::Solid<dim> &solid) override;
+    void
+    connect(const std::string &directory, const double body_diameter) override;
+    Record<dim>
+    record(const time::State           &state,
+           solid::Solid<dim>           &solid,
+           const contact::Reports<dim> &contact) override;
+    std::string
+    summary() const override;
+
+    /// Whether it holds vertices now, where (reference point) and how far
+    /// it moved them (for the view).
+    bool
+    holding() const
+    {
+      return held;
+    }
+    const Point<dim> &
+    point() const
+    {
+      return grasp_point;
+    }
+    Tensor<1, dim>
+    displacement(const double time) const;
+    /// The force the tissue exerts on the tool after the last record().
+    const Tensor<1, dim> &
+    force() const
+    {
+      return last_force;
+    }
+
+  private:
+    double                    radius;
+    const Triangulation<dim> &mesh;
+    /// Bounds of what a page may ask (set by connect()).
+    Point<dim> lower, upper;
+    double     diameter = 1;
+
+    // Process 0: what the pages asked since the last synchronize().
+    std::optional<Point<dim>> asked_grasp;
+    Tensor<1, dim>            asked_drag;
+    bool                      asked_release = false;
+
+    // Shared by synchronize().
+    bool                      grasp_due = false, release_due = false;
+    bool                      held = false;
+    Point<dim>                grasp_point;
+    std::vector<unsigned int> vertices;
+    /// The motion over the step [t0, t1]: from d0 to d1, linearly.
+    double         t0 = 0, t1 = 0;
+    Tensor<1, dim> d0, d1, target;
+    Tensor<1, dim> last_force;
+    unsigned int   grasps        = 0;
+    double         largest_force = 0;
+  };
+} // namespace tissuefem::tool

@@ -1,0 +1,265 @@
+#include <deal.II/base/mpi.h>
+
+#include <tissuefem/base/input_error.h>
+#include <tissuefem/base/parallel.h>
+#include <tissuefem/tool/mouse_grasp.h>
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace tissuefem::tool
+{
+  template <int dim>
+  void
+  MouseGrasp<dim>::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Mouse");
+    prm.declare_entry("Grasp radius",
+                      "0",
+                      Patterns::Double(0),
+                      "With a live view ('Output/Live view/Port'), dragging "
+                      "the surface with the mouse holds the vertices within "
+                      "this distance of the picked point (length units; at "
+                      "least the nearest vertex) and moves them with the "
+                      "mouse. 0 (default): 3 % of the body's diameter.");
+    prm.leave_subsection();
+  }
+
+
+  template <int dim>
+  std::unique_ptr<Interface<dim>>
+  MouseGrasp<dim>::create(ParameterHandler &prm, const Triangulation<dim> &mesh)
+  {
+    prm.enter_subsection("Output");
+    prm.enter_subsection("Live view");
+    const bool view = prm.get_integer("Port") >= 0;
+    prm.leave_subsection();
+    prm.leave_subsection();
+    prm.enter_subsection("Tool");
+    const bool grasping_tool = !Utilities::trim(prm.get("Grasp point")).empty();
+    prm.leave_subsection();
+    prm.enter_subsection("Mouse");
+    const double radius = prm.get_double("Grasp radius");
+    prm.leave_subsection();
+    if (dim < 2 || !view || grasping_tool)
+      return nullptr;
+    return std::make_unique<MouseGrasp<dim>>(radius, mesh);
+  }
+
+
+  template <int dim>
+  MouseGrasp<dim>::MouseGrasp(const double              radius,
+                              const Triangulation<dim> &mesh)
+      : radius(radius)
+      , mesh(mesh)
+  {
+  }
+
+
+  template <int dim>
+  void
+  MouseGrasp<dim>::connect(const std::string &, const double body_diameter)
+  {
+    diameter = body_diameter;
+    if (radius == 0)
+      radius = 0.03 * diameter;
+    for (unsigned int d = 0; d < dim; ++d)
+      {
+        lower[d] = std::numeric_limits<double>::max();
+        upper[d] = -lower[d];
+      }
+    const auto &used = mesh.get_used_vertices();
+    for (unsigned int v = 0; v < mesh.n_vertices(); ++v)
+      if (used[v])
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            lower[d] = std::min(lower[d], mesh.get_vertices()[v][d]);
+            upper[d] = std::max(upper[d], mesh.get_vertices()[v][d]);
+          }
+  }
+
+
+  template <int dim>
+  std::string
+  MouseGrasp<dim>::request_grasp(const Point<dim> &point)
+  {
+    for (unsigned int d = 0; d < dim; ++d)
+      if (!std::isfinite(point[d]) || point[d] < lower[d] - 0.1 * diameter
+          || point[d] > upper[d] + 0.1 * diameter)
+        return "grasp point outside the body";
+    asked_grasp = point;
+    asked_drag  = Tensor<1, dim>();
+    return {};
+  }
+
+
+  template <int dim>
+  std::string
+  MouseGrasp<dim>::request_drag(const Tensor<1, dim> &displacement)
+  {
+    for (unsigned int d = 0; d < dim; ++d)
+      if (!std::isfinite(displacement[d]))
+        return "drag is not finite";
+    if (displacement.norm() > diameter)
+      return "drag farther than the body's diameter";
+    asked_drag = displacement;
+    return {};
+  }
+
+
+  template <int dim>
+  void
+  MouseGrasp<dim>::request_release()
+  {
+    asked_release = true;
+  }
+
+
+  template <int dim>
+  bool
+  MouseGrasp<dim>::synchronize(const double time)
+  {
+    // [grasp?, point, release?, drag] from process 0.
+    std::vector<double> shared(2 + 2 * dim, 0.);
+    if (parallel_tools::is_root())
+      {
+        shared[0] = asked_grasp ? 1 : 0;
+        for (unsigned int d = 0; d < dim; ++d)
+          {
+            shared[1 + d]       = asked_grasp ? (*asked_grasp)[d] : 0;
+            shared[2 + dim + d] = asked_drag[d];
+          }
+        shared[1 + dim] = asked_release ? 1 : 0;
+        asked_grasp.reset();
+        asked_release = false;
+      }
+    shared = Utilities::MPI::broadcast(parallel_tools::communicator(), shared);
+    if (shared[0] != 0 && !held)
+      {
+        for (unsigned int d = 0; d < dim; ++d)
+          grasp_point[d] = shared[1 + d];
+        vertices.clear();
+        const auto  &points  = mesh.get_vertices();
+        const auto  &used    = mesh.get_used_vertices();
+        unsigned int nearest = 0;
+        double       closest = std::numeric_limits<double>::max();
+        for (unsigned int v = 0; v < points.size(); ++v)
+          if (used[v])
+            {
+              const double r = points[v].distance(grasp_point);
+              if (r <= radius)
+                vertices.push_back(v);
+              if (r < closest)
+                closest = r, nearest = v;
+            }
+        if (vertices.empty())
+          vertices.push_back(nearest);
+        grasp_due = true;
+        d0 = d1 = Tensor<1, dim>();
+      }
+    // A release stays due until act() lets go (a click may grasp and
+    // release within one step).
+    if (shared[1 + dim] != 0)
+      release_due = held || grasp_due;
+    for (unsigned int d = 0; d < dim; ++d)
+      target[d] = shared[2 + dim + d];
+    // Towards the target by at most a tenth of the diameter this step.
+    t0                   = t1;
+    t1                   = time;
+    d0                   = d1;
+    Tensor<1, dim> delta = target - d0;
+    if (delta.norm() > 0.1 * diameter)
+      delta *= 0.1 * diameter / delta.norm();
+    d1 = d0 + delta;
+    return true;
+  }
+
+
+  template <int dim>
+  Tensor<1, dim>
+  MouseGrasp<dim>::displacement(const double time) const
+  {
+    if (time <= t0 || t1 <= t0)
+      return time < t1 ? d0 : d1;
+    if (time >= t1)
+      return d1;
+    return d0 + (time - t0) / (t1 - t0) * (d1 - d0);
+  }
+
+
+  template <int dim>
+  bool
+  MouseGrasp<dim>::due(const double) const
+  {
+    return grasp_due || release_due;
+  }
+
+
+  template <int dim>
+  void
+  MouseGrasp<dim>::act(const time::State &state, solid::Solid<dim> &solid)
+  {
+    if (release_due && held)
+      {
+        solid.release();
+        held        = false;
+        release_due = false;
+        d0 = d1 = target = Tensor<1, dim>();
+        return;
+      }
+    if (grasp_due)
+      {
+        solid.hold(
+          vertices,
+          [this](const double t) { return displacement(t); },
+          state.u);
+        held      = true;
+        grasp_due = false;
+        ++grasps;
+      }
+  }
+
+
+  template <int dim>
+  Record<dim>
+  MouseGrasp<dim>::record(const time::State &state,
+                          solid::Solid<dim> &solid,
+                          const contact::Reports<dim> &)
+  {
+    Record<dim> result;
+    if (held)
+      {
+        const auto values
+          = solid.held_force(state.u, state.a, state.time, state.damping);
+        for (unsigned int d = 0; d < dim; ++d)
+          result.force[d] = values[d];
+      }
+    result.position = held ? displacement(state.time) : Tensor<1, dim>();
+    result.engaged  = held;
+    last_force      = result.force;
+    largest_force   = std::max(largest_force, result.force.norm());
+    return result;
+  }
+
+
+  template <int dim>
+  std::string
+  MouseGrasp<dim>::summary() const
+  {
+    std::ostringstream s;
+    s << "mouse: " << grasps << " grasp(s) from the live view, largest force "
+      << largest_force << " (force units)";
+    return s.str();
+  }
+
+  template class MouseGrasp<1>;
+  template class MouseGrasp<2>;
+  template class MouseGrasp<3>;
+
+  TISSUEFEM_REGISTER_TOOL(MouseGrasp,
+                          "mouse",
+                          "the live view's mouse: dragging the surface holds "
+                          "the vertices near the picked point and moves them "
+                          "('Mouse/Grasp radius').")
+} // namespace tissuefem::tool
