@@ -120,6 +120,7 @@ function decodeFrame(buffer) {
     kinetic: numbers[4], rate: numbers[5], frameMs: numbers[6], budget: numbers[7],
     u: new Float32Array(buffer, at, 3 * n),
     values: field > 0 ? new Float32Array(buffer, at + 12 * n, n) : null,
+    mouse: new Float32Array(buffer, at + 12 * n + (field > 0 ? 4 * n : 0), 10),
   };
 }
 
@@ -155,11 +156,104 @@ function drawFrame(f) {
   $('play').disabled = !view.drives || !(f.flags & 1);
   $('pause').disabled = !view.drives || (f.flags & 1);
   $('pace').value = (f.flags & 2) ? 'wall' : 'fast';
+  showForce(f);
   if (f.step !== view.lastStep) {
     ++view.fresh;
     view.lastStep = f.step;
     view.history.push([1e3 * f.stepSeconds, 1e3 * f.budget, f.rate, f.stored, f.kinetic]);
     if (view.history.length > 300) view.history.shift();
+  }
+}
+
+// The mouse: dragging the surface grasps the tissue at the picked point
+// (the run's 'mouse' tool), releasing lets go; elsewhere the mouse orbits.
+const arrow = new THREE.ArrowHelper(new THREE.Vector3(1, 0, 0), new THREE.Vector3(), 1, 0xff5533);
+arrow.visible = false;
+// The force on the tool points into the tissue: drawn over it.
+for (const part of [arrow.line, arrow.cone]) {
+  part.material.depthTest = false;
+  part.renderOrder = 10;
+}
+scene3.add(arrow);
+const drag = {active: false, start: null, plane: new THREE.Plane(), sent: null};
+view.force = [0, 0, 0];
+
+function showForce(f) {
+  const holding = f.mouse[0] !== 0;
+  const force = [f.mouse[7], f.mouse[8], f.mouse[9]];
+  view.force = holding ? force : [0, 0, 0];
+  const size = Math.hypot(force[0], force[1], force[2]);
+  $('n-force').textContent = holding ? size.toPrecision(4) + ' force units' : 'not grasping';
+  if (!holding || !mesh || size === 0) { arrow.visible = false; return; }
+  // From the grasped point as it is now (where the mouse put it).
+  const p = new THREE.Vector3(f.mouse[1], f.mouse[2], f.mouse[3]);
+  const nearest = nearestVertex(p);
+  const position = mesh.geometry.attributes.position.array;
+  arrow.position.set(position[3 * nearest], position[3 * nearest + 1], position[3 * nearest + 2]);
+  arrow.setDirection(new THREE.Vector3(force[0], force[1], force[2]).normalize());
+  const length = 0.25 * mesh.geometry.boundingSphere.radius;
+  arrow.setLength(length, 0.25 * length, 0.12 * length);
+  arrow.visible = true;
+}
+
+function nearestVertex(p) {
+  const x = view.topology.reference;
+  let best = 0, distance = Infinity;
+  for (let i = 0; i < view.topology.n; ++i) {
+    const d = (x[3 * i] - p.x) ** 2 + (x[3 * i + 1] - p.y) ** 2 + (x[3 * i + 2] - p.z) ** 2;
+    if (d < distance) { distance = d; best = i; }
+  }
+  return best;
+}
+
+function pointer(event) {
+  const r = renderer.domElement.getBoundingClientRect();
+  return new THREE.Vector2(((event.clientX - r.left) / r.width) * 2 - 1,
+                           -((event.clientY - r.top) / r.height) * 2 + 1);
+}
+const raycaster = new THREE.Raycaster();
+
+// Capture phase on the container: before the orbit controls see it.
+container.addEventListener('mousedown', (event) => {
+  if (event.button !== 0 || !mesh || !view.drives) return;
+  raycaster.setFromCamera(pointer(event), camera);
+  const hit = raycaster.intersectObject(mesh)[0];
+  if (!hit) return;
+  event.stopPropagation();
+  event.preventDefault();
+  // The picked point in reference coordinates: the same barycentric
+  // weights in the reference triangle.
+  const position = mesh.geometry.attributes.position.array, x = view.topology.reference;
+  const corner = (k) => new THREE.Vector3(position[3 * k], position[3 * k + 1], position[3 * k + 2]);
+  const w = THREE.Triangle.getBarycoord(hit.point, corner(hit.face.a), corner(hit.face.b),
+                                        corner(hit.face.c), new THREE.Vector3());
+  const X = [0, 1, 2].map((d) => w.x * x[3 * hit.face.a + d] + w.y * x[3 * hit.face.b + d] +
+                                 w.z * x[3 * hit.face.c + d]);
+  drag.active = true;
+  drag.start = hit.point.clone();
+  drag.plane.setFromNormalAndCoplanarPoint(camera.getWorldDirection(new THREE.Vector3()), hit.point);
+  drag.sent = null;
+  send('grasp ' + X.join(' '));
+}, true);
+
+window.addEventListener('mousemove', (event) => {
+  if (!drag.active) return;
+  raycaster.setFromCamera(pointer(event), camera);
+  const p = raycaster.ray.intersectPlane(drag.plane, new THREE.Vector3());
+  if (p) drag.sent = p.sub(drag.start);
+});
+
+window.addEventListener('mouseup', () => {
+  if (!drag.active) return;
+  drag.active = false;
+  send('release');
+});
+
+// At most one drag message per animation frame.
+function sendDrag() {
+  if (drag.active && drag.sent) {
+    send('drag ' + drag.sent.x + ' ' + drag.sent.y + ' ' + drag.sent.z);
+    drag.sent = null;
   }
 }
 
@@ -189,6 +283,7 @@ function chart(id, series, colours, level) {
 
 function animate() {
   requestAnimationFrame(animate);
+  sendDrag();
   if (view.pending) { drawFrame(view.pending); view.pending = null; }
   controls.update();
   renderer.render(scene3, camera);

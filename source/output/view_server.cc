@@ -237,6 +237,7 @@ namespace tissuefem::output
           // A page closing normally is not worth a warning.
           const bool normal = ec == websocket::error::closed
                               || ec == net::error::eof
+                              || ec == net::error::connection_reset
                               || ec == net::error::operation_aborted;
           if (!closed)
             {

@@ -262,8 +262,15 @@ namespace tissuefem::postprocess
       send_topology();
     if (decision[0])
       send_frame(step, seconds_since(start));
-    if (parallel_tools::is_root())
-      hold(step.state.time);
+  }
+
+
+  template <int dim>
+  void
+  LiveView<dim>::wait(const time::State &state)
+  {
+    if (server)
+      hold(state.time);
   }
 
 
@@ -417,16 +424,23 @@ namespace tissuefem::postprocess
     put<std::uint32_t>(*bytes, surface->vertices.size());
     put<std::uint32_t>(*bytes, field);
     put<std::uint32_t>(*bytes, (paused ? 1 : 0) | (pace_wall ? 2 : 0));
+    // Simulated seconds per wall-clock second over the last second or so.
     const double wall = seconds_since(run_start);
-    for (const double x :
-         {step.state.time,
-          step.report.dt,
-          step.report.step_seconds,
-          stored,
-          kinetic,
-          wall > 0 ? (step.state.time - run_start_time) / wall : 0.,
-          frame_ms,
-          budget})
+    recent.emplace_back(wall, step.state.time);
+    while (recent.size() > 2 && wall - recent[1].first > 1)
+      recent.pop_front();
+    const double rate = wall > recent.front().first
+                          ? (step.state.time - recent.front().second)
+                              / (wall - recent.front().first)
+                          : 0.;
+    for (const double x : {step.state.time,
+                           step.report.dt,
+                           step.report.step_seconds,
+                           stored,
+                           kinetic,
+                           rate,
+                           frame_ms,
+                           budget})
       put<double>(*bytes, std::isfinite(x) ? x : 0.);
     put_all(*bytes, displacement);
     if (!values.empty())

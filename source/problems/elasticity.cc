@@ -372,6 +372,18 @@ namespace tissuefem::problems
 
   template <int dim>
   void
+  Elasticity<dim>::wait_for_postprocessors(TimerOutput       &timer,
+                                           const time::State &state)
+  {
+    // Timed apart: a paused or paced run is not slow output.
+    TimerOutput::Scope scope(timer, "waiting (live view: paused, paced)");
+    for (auto &[name, postprocessor] : postprocessors)
+      postprocessor->wait(state);
+  }
+
+
+  template <int dim>
+  void
   Elasticity<dim>::adapt_mesh(const unsigned int step, time::State &state)
   {
     if (!adaptation->due(step))
@@ -599,6 +611,7 @@ namespace tissuefem::problems
                       + std::to_string(scene->triangulation.n_active_cells())
                       + " unknowns " + std::to_string(solid.n_dofs()));
         postprocess(0, time::StepReport(), state);
+        wait_for_postprocessors(timer, state);
       }
 
     const double           end_time = time_parameters.end_time;
@@ -618,17 +631,21 @@ namespace tissuefem::problems
         totals.solve_seconds += report.solve_seconds;
         totals.newton_iterations += report.newton_iterations;
         totals.rejected_attempts += report.rejected_attempts;
+        {
+          TimerOutput::Scope scope(timer, "output");
+          screen << "step " << std::setw(5) << step << "  t = " << std::setw(10)
+                 << state.time << "  dt = " << std::setw(10) << report.dt
+                 << "  Newton " << std::setw(2) << report.newton_iterations
+                 << "  |R| = " << std::scientific << std::setprecision(2)
+                 << report.residual_norm << std::defaultfloat
+                 << std::setprecision(6) << std::endl;
+          postprocess(step, report, state);
+          const unsigned int interval = output_parameters.checkpoint_interval;
+          if (interval > 0 && step % interval == 0)
+            write_checkpoint(step, state);
+        }
+        wait_for_postprocessors(timer, state);
         TimerOutput::Scope scope(timer, "output");
-        screen << "step " << std::setw(5) << step << "  t = " << std::setw(10)
-               << state.time << "  dt = " << std::setw(10) << report.dt
-               << "  Newton " << std::setw(2) << report.newton_iterations
-               << "  |R| = " << std::scientific << std::setprecision(2)
-               << report.residual_norm << std::defaultfloat
-               << std::setprecision(6) << std::endl;
-        postprocess(step, report, state);
-        const unsigned int interval = output_parameters.checkpoint_interval;
-        if (interval > 0 && step % interval == 0)
-          write_checkpoint(step, state);
         stop_if_interrupted(step, state);
         // The state just written is an equilibrium (or solution) on its
         // mesh; the next step starts on the adapted one.

@@ -130,6 +130,14 @@ namespace tissuefem::postprocess
     execute(const Step<dim> &step)
       = 0;
 
+    /// After every postprocessor has processed the state @p state, outside
+    /// the outputs' timing: a postprocessor that holds the run (the live
+    /// view pausing, or pacing it to the wall clock) waits here.
+    virtual void
+    wait(const time::State & /*state*/)
+    {
+    }
+
     /// At the end of the run, after the last step: adds entries to the run
     /// record (run.txt) and prints its report, if any.
     virtual void

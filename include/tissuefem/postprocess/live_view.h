@@ -7,6 +7,7 @@
 #include <boost/signals2/connection.hpp>
 
 #include <chrono>
+#include <deque>
 #include <memory>
 #include <string>
 #include <vector>
@@ -32,9 +33,9 @@ namespace tissuefem::postprocess
    * the driving page): 'pause', 'play', 'step' (one step, then pause),
    * 'pace wall' / 'pace fast', 'field NAME', and for the mouse tool
    * (tool/mouse_grasp.h) 'grasp X Y Z', 'drag DX DY DZ', 'release'. Pausing and
-   * pacing happen here, after a step's outputs, so every process waits together
-   * at the next collective operation. A page closing while the run is paused
-   * lets it go on.
+   * pacing happen in wait(), after a step's outputs and timed apart from
+   * them, on process 0; the others wait at the next collective operation. A
+   * page closing while the run is paused lets it go on.
    *
    * Messages (little-endian) are documented in doc/live_view.md.
    */
@@ -61,6 +62,10 @@ namespace tissuefem::postprocess
 
     void
     execute(const Step<dim> &step) override;
+
+    /// Process 0: waits while paused, then paces to the wall clock.
+    void
+    wait(const time::State &state) override;
 
     void
     finish(const time::State &state,
@@ -91,9 +96,10 @@ namespace tissuefem::postprocess
     /// Pacing: wall clock and simulated time when pacing started.
     std::chrono::steady_clock::time_point pace_wall_origin;
     double                                pace_time_origin = 0;
-    /// For the simulated time per wall-clock second.
+    /// For the simulated time per wall-clock second: (wall-clock seconds
+    /// since the start, simulated time) of the frames of the last second.
     std::chrono::steady_clock::time_point run_start;
-    double                                run_start_time = 0;
+    std::deque<std::pair<double, double>> recent;
 
     /// Root: applies the driving page's commands.
     void

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <deal.II/base/timer.h>
+
 #include <boost/signals2/connection.hpp>
 
 #include <tissuefem/adaptation/mesh_adaptation.h>
@@ -109,6 +111,11 @@ namespace tissuefem::problems
     /// Adapts the mesh after step @p step if due.
     void
     adapt_mesh(const unsigned int step, time::State &state);
+
+    /// Lets every postprocessor wait after a state (Interface::wait()),
+    /// timed in @p timer apart from the output.
+    void
+    wait_for_postprocessors(TimerOutput &timer, const time::State &state);
 
     /// Why this scene cannot be checkpointed, or empty.
     std::string

@@ -1,0 +1,139 @@
+// The live view in a real browser (ctest browser/live_view):
+//
+//   node live_view.mjs TISSUEFEM SCENE WORKDIR
+//
+// Starts tissuefem on SCENE (a unit cube held by rollers, otherwise free,
+// quasistatic) with the live view on and paused, drives Debian's Chromium
+// headless (software WebGL) through puppeteer-core, and checks that
+// - the canvas is not blank: many pixels differ from the background and
+//   the colours vary (the colour map);
+// - play advances the steps; pause stops them; play resumes;
+// - dragging the surface with the mouse grasps it: the page shows a
+//   non-zero force, and the same force is a row of the run's
+//   tool_force.csv with the tool holding and displaced;
+// - switching the colour field to von Mises changes the legend's field;
+// - after the page closes, the run ends by itself with exit 0.
+// Screenshots go to WORKDIR (test artifacts).
+import fs from 'node:fs';
+import path from 'node:path';
+import {spawn} from 'node:child_process';
+import puppeteer from 'puppeteer-core';
+
+const [exe, scene, work] = process.argv.slice(2);
+fs.rmSync(work, {recursive: true, force: true});
+fs.mkdirSync(work, {recursive: true});
+const failures = [];
+const check = (ok, what) => { if (!ok) { failures.push(what); console.log('FAILED:', what); } };
+const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
+
+const log = fs.openSync(path.join(work, 'run.log'), 'w');
+const run = spawn(exe, [scene,
+  '--set', 'Boundary conditions/Dirichlet=0: x: 0 | 2: y: 0 | 4: z: 0',
+  '--set', 'Output/Live view/Port=0', '--set', 'Output/Live view/Start paused=true',
+  '--set', 'Output/Live view/Wait for page=60', '--set', 'Mouse/Grasp radius=0.2',
+  '--set', 'Time integration/Time step=0.02', '--set', 'Time integration/End time=6'],
+  {cwd: work, stdio: ['ignore', log, log]});
+let exitCode = null;
+const exited = new Promise((resolve) => run.on('exit', (code) => { exitCode = code; resolve(code); }));
+
+const addressFile = path.join(work, 'results', 'live_view');
+for (let k = 0; k < 300 && !fs.existsSync(addressFile); ++k) await sleep(50);
+const url = fs.readFileSync(addressFile, 'utf8').trim();
+
+const browser = await puppeteer.launch({
+  executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
+  headless: true,
+  args: ['--headless=new', '--no-sandbox', '--use-angle=swiftshader',
+         '--enable-unsafe-swiftshader', '--window-size=1200,800'],
+});
+try {
+  const page = await browser.newPage();
+  await page.setViewport({width: 1200, height: 800});
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(String(e)));
+  await page.goto(url);
+  await page.waitForFunction(() => window.tissuefem.topology && window.tissuefem.lastStep >= 0,
+                             {timeout: 20000});
+  await sleep(300);
+  const state = () => page.evaluate(() => ({
+    step: window.tissuefem.lastStep, force: window.tissuefem.force,
+    forceText: document.getElementById('n-force').textContent,
+    legend: document.getElementById('legend-unit').textContent}));
+
+  // Pixel statistics of the drawn canvas.
+  const pixels = await page.evaluate(() => {
+    const source = document.querySelector('#view canvas');
+    const c = document.createElement('canvas');
+    c.width = source.width; c.height = source.height;
+    const g = c.getContext('2d');
+    g.drawImage(source, 0, 0);
+    const d = g.getImageData(0, 0, c.width, c.height).data;
+    let differing = 0;
+    const colours = new Set();
+    for (let i = 0; i < d.length; i += 4) {
+      if (Math.abs(d[i] - 0x1d) + Math.abs(d[i + 1] - 0x20) + Math.abs(d[i + 2] - 0x26) > 30) ++differing;
+      colours.add((d[i] >> 3) * 1024 + (d[i + 1] >> 3) * 32 + (d[i + 2] >> 3));
+    }
+    return {share: differing / (d.length / 4), colours: colours.size};
+  });
+  console.log('canvas: %s of the pixels drawn, %d colours', pixels.share.toFixed(3), pixels.colours);
+  check(pixels.share > 0.02 && pixels.colours > 20, 'the canvas is not blank');
+  await page.screenshot({path: path.join(work, '1-loaded.png')});
+
+  await page.click('#play');
+  await sleep(800);
+  const playing = (await state()).step;
+  check(playing > 0, 'play advances the steps');
+
+  // Drag from the middle of the canvas (the body is framed there).
+  const box = await (await page.$('#view canvas')).boundingBox();
+  const x0 = box.x + box.width / 2, y0 = box.y + box.height / 2;
+  await page.mouse.move(x0, y0);
+  await page.mouse.down();
+  for (let k = 1; k <= 10; ++k) { await page.mouse.move(x0 + 8 * k, y0 - 4 * k); await sleep(50); }
+  await sleep(1000);
+  const dragging = await state();
+  await page.screenshot({path: path.join(work, '2-dragging.png')});
+  const size = Math.hypot(...dragging.force);
+  console.log('force shown while dragging: %s (%s)', dragging.force.join(' '), dragging.forceText);
+  check(size > 0 && /force units/.test(dragging.forceText), 'the page shows a non-zero force while dragging');
+  await page.mouse.up();
+
+  await page.select('#field', 'von Mises');
+  await page.waitForFunction(() => /von Mises/.test(document.getElementById('legend-unit').textContent),
+                             {timeout: 10000}).catch(() => {});
+  check(/von Mises/.test((await state()).legend), 'the legend follows the colour field');
+  await page.screenshot({path: path.join(work, '3-von-mises.png')});
+
+  await page.click('#pause');
+  await sleep(500);
+  const paused = (await state()).step;
+  await sleep(700);
+  check((await state()).step === paused, 'pause stops the steps');
+  await page.click('#play');
+  await sleep(700);
+  check((await state()).step > paused, 'play resumes');
+  check(errors.length === 0, 'no error in the page: ' + errors.join('; '));
+  await page.close();
+
+  // The run's own record of the drag: the force the page showed (the
+  // record of the step before its frame) is a row of tool_force.csv.
+  await Promise.race([exited, new Promise((r) => setTimeout(r, 60000).unref())]);
+  check(exitCode === 0, 'the run ends by itself with exit 0 after the page closed (' + exitCode + ')');
+  const rows = fs.readFileSync(path.join(work, 'results', 'tool_force.csv'), 'utf8')
+    .trim().split('\n').slice(1).map((l) => l.split(',').map(Number));
+  const held = rows.filter((r) => r[1] === 1);
+  check(held.length > 0 && held.some((r) => Math.hypot(r[2], r[3], r[4]) > 0),
+        'tool_force.csv shows the tool holding and displaced');
+  const same = held.some((r) => [0, 1, 2].every((d) =>
+    Math.abs(r[5 + d] - dragging.force[d]) <= 1e-5 * Math.max(size, 1e-12)));
+  check(same, 'the force the page showed is a row of tool_force.csv');
+} finally {
+  await browser.close();
+  if (exitCode === null) run.kill();
+}
+if (failures.length) {
+  console.log(fs.readFileSync(path.join(work, 'run.log'), 'utf8').slice(-3000));
+  process.exit(1);
+}
+console.log('browser live view: all checks passed');
