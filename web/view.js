@@ -111,13 +111,14 @@ function decodeFrame(buffer) {
   const d = new DataView(buffer);
   const n = d.getUint32(8, true);
   const header = 20, numbers = [];
-  for (let k = 0; k < 8; ++k) numbers.push(d.getFloat64(header + 8 * k, true));
-  const at = header + 64;
+  for (let k = 0; k < 10; ++k) numbers.push(d.getFloat64(header + 8 * k, true));
+  const at = header + 80;
   const field = d.getUint32(12, true);
   return {
     step: d.getUint32(4, true), n: n, field: field, flags: d.getUint32(16, true),
     time: numbers[0], dt: numbers[1], stepSeconds: numbers[2], stored: numbers[3],
     kinetic: numbers[4], rate: numbers[5], frameMs: numbers[6], budget: numbers[7],
+    latencyMedian: numbers[8], latencyP99: numbers[9],
     u: new Float32Array(buffer, at, 3 * n),
     values: field > 0 ? new Float32Array(buffer, at + 12 * n, n) : null,
     mouse: new Float32Array(buffer, at + 12 * n + (field > 0 ? 4 * n : 0), 10),
@@ -153,6 +154,8 @@ function drawFrame(f) {
   $('n-rate').textContent = f.rate.toPrecision(3);
   $('n-stored').textContent = f.stored.toPrecision(4);
   $('n-kinetic').textContent = f.kinetic.toPrecision(4);
+  $('n-latency').textContent = f.latencyMedian < 0 ? 'no device on the live port'
+    : f.latencyMedian.toFixed(3) + ' / ' + f.latencyP99.toFixed(3) + ' ms';
   $('play').disabled = !view.drives || !(f.flags & 1);
   $('pause').disabled = !view.drives || (f.flags & 1);
   $('pace').value = (f.flags & 2) ? 'wall' : 'fast';
@@ -160,7 +163,8 @@ function drawFrame(f) {
   if (f.step !== view.lastStep) {
     ++view.fresh;
     view.lastStep = f.step;
-    view.history.push([1e3 * f.stepSeconds, 1e3 * f.budget, f.rate, f.stored, f.kinetic]);
+    view.history.push([1e3 * f.stepSeconds, 1e3 * f.budget, f.rate, f.stored, f.kinetic,
+                       Math.max(f.latencyMedian, 0), Math.max(f.latencyP99, 0)]);
     if (view.history.length > 300) view.history.shift();
   }
 }
@@ -298,6 +302,7 @@ setInterval(() => {
   chart('chart-wall', [0], ['#7c7'], last ? last[1] : 0);
   chart('chart-rate', [2], ['#c7c'], 1);
   chart('chart-energy', [3, 4], ['#f93', '#6af'], 0);
+  chart('chart-latency', [5, 6], ['#7c7', '#f66'], last ? 2 : 0);
 }, 1000);
 
 const socket = new WebSocket(`ws://${location.host}/ws`);
@@ -317,7 +322,8 @@ socket.onmessage = (event) => {
   const message = JSON.parse(event.data);
   if (message.type === 'scene') {
     view.scene = message;
-    $('description').textContent = message.description + ', integrator \'' +
+    document.title = message.file + ' - TissueFEM live view';
+    $('description').textContent = message.file + ': ' + message.description + ', integrator \'' +
       message.integrator + '\', material ' + message.materials + ', time step ' +
       message.time_step + ', output in ' + message.directory + '/';
     const select = $('field');
@@ -331,7 +337,7 @@ socket.onmessage = (event) => {
     $('connection').className = message.drives ? '' : 'watching';
     for (const id of ['play', 'pause', 'step', 'pace', 'field']) $(id).disabled = !message.drives;
   } else if (message.type === 'error') {
-    $('status').textContent = message.message;
+    $('status').textContent = (message.fatal ? 'the run stopped: ' : '') + message.message;
   } else if (message.type === 'end') {
     view.ended = true;
     $('connection').textContent = 'the run ended at t = ' + message.time;

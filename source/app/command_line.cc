@@ -235,6 +235,7 @@ namespace tissuefem
       context.parameter_directory
         = std::filesystem::path(line.file).parent_path().string();
       context.restart_directory = line.restart;
+      context.parameter_file    = line.file;
       auto problem              = problems::ProblemRegistry::instance().create(
         problems::ProblemRegistry::instance().canonical(prm.get("Problem"),
                                                         "Problem"),

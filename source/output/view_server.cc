@@ -145,8 +145,12 @@ namespace tissuefem::output
     void
     accept(http::request<http::empty_body> request)
     {
-      ws.set_option(
-        websocket::stream_base::timeout::suggested(beast::role_type::server));
+      // Pings when idle: a page that only watches sends nothing, and must
+      // not be taken for a dead one (Beast's idle timeout, 300 s).
+      auto timeouts
+        = websocket::stream_base::timeout::suggested(beast::role_type::server);
+      timeouts.keep_alive_pings = true;
+      ws.set_option(timeouts);
       ws.read_message_max(max_command);
       ws.async_accept(request,
                       [self = shared_from_this()](beast::error_code ec) {
@@ -238,6 +242,7 @@ namespace tissuefem::output
           const bool normal = ec == websocket::error::closed
                               || ec == net::error::eof
                               || ec == net::error::connection_reset
+                              || ec == net::error::not_connected
                               || ec == net::error::operation_aborted;
           if (!closed)
             {

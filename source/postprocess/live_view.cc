@@ -219,7 +219,9 @@ namespace tissuefem::postprocess
     for (const auto &name : field_names)
       fields += (fields.empty() ? "" : ",") + output::json_quote(name);
     return std::string("{\"type\":\"scene\",\"dimension\":")
-           + std::to_string(dim) + ",\"description\":"
+           + std::to_string(dim)
+           + ",\"file\":" + output::json_quote(this->context->parameter_file)
+           + ",\"description\":"
            + output::json_quote(this->context->scene.describe())
            + ",\"integrator\":" + output::json_quote(integrator)
            + ",\"materials\":" + output::json_quote(models) + ",\"directory\":"
@@ -433,6 +435,11 @@ namespace tissuefem::postprocess
                           ? (step.state.time - recent.front().second)
                               / (wall - recent.front().first)
                           : 0.;
+    // A live device's answer latency (ms; -1 without one).
+    std::vector<double> latency = {-1., -1.};
+    for (const auto &[tool_name, tool] : scene.tools)
+      if (const auto l = tool->haptic_latency(); l.size() == 2)
+        latency = l;
     for (const double x : {step.state.time,
                            step.report.dt,
                            step.report.step_seconds,
@@ -440,7 +447,9 @@ namespace tissuefem::postprocess
                            kinetic,
                            rate,
                            frame_ms,
-                           budget})
+                           budget,
+                           latency[0],
+                           latency[1]})
       put<double>(*bytes, std::isfinite(x) ? x : 0.);
     put_all(*bytes, displacement);
     if (!values.empty())
@@ -525,6 +534,20 @@ namespace tissuefem::postprocess
     print_log();
     server.reset();
   }
+
+  template <int dim>
+  void
+  LiveView<dim>::abort(const std::string &what)
+  {
+    if (!server)
+      return;
+    server->finish("{\"type\":\"error\",\"fatal\":true,\"message\":"
+                   + output::json_quote(what) + "}");
+    server->close();
+    print_log();
+    server.reset();
+  }
+
 
   template class LiveView<1>;
   template class LiveView<2>;

@@ -69,7 +69,10 @@ namespace tissuefem::problems
       output_parameters.summary_interval,
       output_parameters.summary_displacement_unit);
     postprocess_context = std::make_unique<postprocess::Context<dim>>(
-      postprocess::Context<dim>{*scene, output_parameters.directory, *summary});
+      postprocess::Context<dim>{*scene,
+                                output_parameters.directory,
+                                *summary,
+                                run_context.parameter_file});
     // The registry's (alphabetical) order is the order of their lines in
     // the summary file.
     postprocessors.clear();
@@ -614,8 +617,38 @@ namespace tissuefem::problems
         wait_for_postprocessors(timer, state);
       }
 
-    const double           end_time = time_parameters.end_time;
     postprocess::RunTotals totals;
+    try
+      {
+        run_steps(state, step, timer, totals);
+      }
+    catch (const std::exception &e)
+      {
+        // Whoever watches the run (the live view's pages) learns why it
+        // stopped; the caller reports it as before.
+        for (auto &[name, postprocessor] : postprocessors)
+          postprocessor->abort(e.what());
+        throw;
+      }
+    totals.wall_seconds = std::chrono::duration<double>(
+                            std::chrono::steady_clock::now() - run_start)
+                            .count();
+    finish(state, totals);
+    timer.print_summary();
+    screen << "output in " << output_parameters.directory
+           << "/ (run.txt: the run's figures, with units)" << std::endl;
+  }
+
+
+  template <int dim>
+  void
+  Elasticity<dim>::run_steps(time::State            &state,
+                             unsigned int           &step,
+                             TimerOutput            &timer,
+                             postprocess::RunTotals &totals)
+  {
+    auto        &screen   = parallel_tools::screen();
+    const double end_time = time_parameters.end_time;
     while (state.time < end_time * (1 - 1e-12))
       {
         time::StepReport report;
@@ -652,13 +685,6 @@ namespace tissuefem::problems
         if (state.time < end_time * (1 - 1e-12))
           adapt_mesh(step, state);
       }
-    totals.wall_seconds = std::chrono::duration<double>(
-                            std::chrono::steady_clock::now() - run_start)
-                            .count();
-    finish(state, totals);
-    timer.print_summary();
-    screen << "output in " << output_parameters.directory
-           << "/ (run.txt: the run's figures, with units)" << std::endl;
   }
 
   template class Elasticity<1>;

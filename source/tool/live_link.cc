@@ -393,6 +393,25 @@ namespace tissuefem::tool
   }
 
 
+  std::vector<double>
+  LiveLink::recent_latency() const
+  {
+    std::vector<double> recent;
+    {
+      std::lock_guard<std::mutex> guard(lock);
+      const std::size_t n = std::min<std::size_t>(latencies.size(), 1000);
+      recent.assign(latencies.end() - n, latencies.end());
+    }
+    if (recent.empty())
+      return {};
+    std::sort(recent.begin(), recent.end());
+    return {1e3 * recent[recent.size() / 2],
+            1e3
+              * recent[std::min<std::size_t>(recent.size() - 1,
+                                             0.99 * recent.size())]};
+  }
+
+
   std::string
   LiveLink::report(const double simulated_time) const
   {

@@ -31,7 +31,7 @@ const run = spawn(exe, [scene,
   '--set', 'Boundary conditions/Dirichlet=0: x: 0 | 2: y: 0 | 4: z: 0',
   '--set', 'Output/Live view/Port=0', '--set', 'Output/Live view/Start paused=true',
   '--set', 'Output/Live view/Wait for page=60', '--set', 'Mouse/Grasp radius=0.2',
-  '--set', 'Time integration/Time step=0.02', '--set', 'Time integration/End time=6'],
+  '--set', 'Time integration/Time step=0.02', '--set', 'Time integration/End time=30'],
   {cwd: work, stdio: ['ignore', log, log]});
 let exitCode = null;
 const exited = new Promise((resolve) => run.on('exit', (code) => { exitCode = code; resolve(code); }));
@@ -80,10 +80,10 @@ try {
   check(pixels.share > 0.02 && pixels.colours > 20, 'the canvas is not blank');
   await page.screenshot({path: path.join(work, '1-loaded.png')});
 
+  // Waits (up to 30 s: the machine may be busy) for @p test in the page.
+  const until = (test, arg) => page.waitForFunction(test, {timeout: 30000}, arg).then(() => true, () => false);
   await page.click('#play');
-  await sleep(800);
-  const playing = (await state()).step;
-  check(playing > 0, 'play advances the steps');
+  check(await until(() => window.tissuefem.lastStep > 0), 'play advances the steps');
 
   // Drag from the middle of the canvas (the body is framed there).
   const box = await (await page.$('#view canvas')).boundingBox();
@@ -91,7 +91,8 @@ try {
   await page.mouse.move(x0, y0);
   await page.mouse.down();
   for (let k = 1; k <= 10; ++k) { await page.mouse.move(x0 + 8 * k, y0 - 4 * k); await sleep(50); }
-  await sleep(1000);
+  await until(() => Math.hypot(...window.tissuefem.force) > 0);
+  await sleep(500);
   const dragging = await state();
   await page.screenshot({path: path.join(work, '2-dragging.png')});
   const size = Math.hypot(...dragging.force);
@@ -106,14 +107,18 @@ try {
   await page.screenshot({path: path.join(work, '3-von-mises.png')});
 
   await page.click('#pause');
-  await sleep(500);
+  // Paused once a frame says so (the play button comes back).
+  check(await until(() => !document.getElementById('play').disabled), 'the page shows the pause');
+  await sleep(300);
   const paused = (await state()).step;
-  await sleep(700);
+  await sleep(1000);
   check((await state()).step === paused, 'pause stops the steps');
   await page.click('#play');
-  await sleep(700);
-  check((await state()).step > paused, 'play resumes');
+  check(await until((p) => window.tissuefem.lastStep > p, paused), 'play resumes');
   check(errors.length === 0, 'no error in the page: ' + errors.join('; '));
+  // The rest of the run as fast as it can, then the page goes.
+  await page.select('#pace', 'fast');
+  await sleep(300);
   await page.close();
 
   // The run's own record of the drag: the force the page showed (the

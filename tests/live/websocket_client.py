@@ -135,14 +135,14 @@ def decode(opcode, payload):
         return "topology", {"n": n, "m": m, "dim": dim, "x": x, "tri": tri}
     if magic == b"TFF1":
         step, n, field, flags = struct.unpack_from("<IIII", payload, 4)
-        numbers = struct.unpack_from("<8d", payload, 20)
-        u = struct.unpack_from("<%df" % (3 * n), payload, 84)
-        values = (struct.unpack_from("<%df" % n, payload, 84 + 12 * n)
+        numbers = struct.unpack_from("<10d", payload, 20)
+        u = struct.unpack_from("<%df" % (3 * n), payload, 100)
+        values = (struct.unpack_from("<%df" % n, payload, 100 + 12 * n)
                   if field > 0 else None)
         mouse = struct.unpack_from("<10f", payload,
-                                   84 + 12 * n + (4 * n if field > 0 else 0))
+                                   100 + 12 * n + (4 * n if field > 0 else 0))
         names = ["time", "dt", "step_seconds", "stored", "kinetic", "rate",
-                 "frame_ms", "budget"]
+                 "frame_ms", "budget", "latency_median", "latency_p99"]
         frame = dict(zip(names, numbers))
         frame.update(step=step, n=n, field=field, flags=flags, u=u,
                      values=values, bytes=len(payload),

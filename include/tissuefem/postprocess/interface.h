@@ -26,6 +26,8 @@ namespace tissuefem::postprocess
     std::string directory;
     /// The optional summary file for regression tests.
     output::SummaryFile &summary;
+    /// The parameter file the run reads, as given on the command line.
+    std::string parameter_file = {};
   };
 
   /// One state to process.
@@ -135,6 +137,14 @@ namespace tissuefem::postprocess
     /// view pausing, or pacing it to the wall clock) waits here.
     virtual void
     wait(const time::State & /*state*/)
+    {
+    }
+
+    /// When the run stops on an error (@p what says which), instead of
+    /// finish(): a postprocessor that talks to someone tells them (the live
+    /// view's pages). Files are already whole.
+    virtual void
+    abort(const std::string & /*what*/)
     {
     }
 

@@ -72,6 +72,10 @@ namespace tissuefem::postprocess
            const RunTotals   &totals,
            output::RunRecord &record) override;
 
+    /// Tells the pages why the run stopped, and closes them.
+    void
+    abort(const std::string &what) override;
+
   private:
     /// 'Port' (-1: no live view), 'Address', 'Frame rate', 'Wait for page'.
     int         port = -1;

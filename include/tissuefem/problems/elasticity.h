@@ -112,6 +112,14 @@ namespace tissuefem::problems
     void
     adapt_mesh(const unsigned int step, time::State &state);
 
+    /// The steps from @p state (after step @p step) to the end time, each
+    /// followed by its outputs; counts into @p totals, times into @p timer.
+    void
+    run_steps(time::State            &state,
+              unsigned int           &step,
+              TimerOutput            &timer,
+              postprocess::RunTotals &totals);
+
     /// Lets every postprocessor wait after a state (Interface::wait()),
     /// timed in @p timer apart from the output.
     void

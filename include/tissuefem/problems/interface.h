@@ -17,6 +17,8 @@ namespace tissuefem::problems
   {
     /// Directory of the parameter file; relative mesh paths start here.
     std::string parameter_directory;
+    /// The parameter file, as given (for what a run shows of itself).
+    std::string parameter_file;
     /// '--restart DIR': a checkpoint directory the run continues from
     /// (empty: start at t = 0).
     std::string restart_directory;

@@ -73,6 +73,11 @@ namespace tissuefem::tool
     synchronize(const double time) override;
     std::string
     live_end() const override;
+    std::vector<double>
+    haptic_latency() const override
+    {
+      return haptic.latency();
+    }
 
     /// The contact force on the tool after a step, and the haptic samples.
     Record<dim>

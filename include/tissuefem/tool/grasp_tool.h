@@ -93,6 +93,11 @@ namespace tissuefem::tool
     /// Why the live session ended (empty while it goes on).
     std::string
     live_end() const override;
+    std::vector<double>
+    haptic_latency() const override
+    {
+      return haptic.latency();
+    }
 
     /// The force after a step (every process calls), and the haptic
     /// forces extrapolated for the instants since the previous step.

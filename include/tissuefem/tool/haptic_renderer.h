@@ -108,6 +108,14 @@ namespace tissuefem::tool
     std::vector<typename Record<dim>::HapticSample>
     update(const double time, const Tensor<1, dim> &force, const bool engaged);
 
+    /// Live: the latency of the device's recent answers (median and 99th
+    /// percentile, ms; LiveLink::recent_latency()); else empty.
+    std::vector<double>
+    latency() const
+    {
+      return link ? link->recent_latency() : std::vector<double>();
+    }
+
     /// 'haptic: ... updates ..., extrapolation error ...' and, live, the
     /// device's report.
     std::string

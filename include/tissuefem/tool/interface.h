@@ -132,6 +132,14 @@ namespace tissuefem::tool
            const contact::Reports<dim> &contact)
       = 0;
 
+    /// A live device's recent answer latency: median and 99th percentile
+    /// (ms), on process 0; empty without one.
+    virtual std::vector<double>
+    haptic_latency() const
+    {
+      return {};
+    }
+
     /// The end-of-run report (one or more lines, no trailing newline).
     virtual std::string
     summary() const = 0;

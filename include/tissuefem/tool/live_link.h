@@ -135,6 +135,12 @@ namespace tissuefem::tool
     std::string
     report(const double simulated_time) const;
 
+    /// The latency of the last (at most 1000) answers, from reading a
+    /// position to sending its force: median and 99th percentile (ms);
+    /// empty before the first answer (process 0).
+    std::vector<double>
+    recent_latency() const;
+
   private:
     /// Why @p sample must not be followed (empty: it may); sets the
     /// origin from the first position.
