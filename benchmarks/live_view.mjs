@@ -62,7 +62,7 @@ async function run(name, withPage, browser) {
   const child = spawn(exe, args, {cwd: directory,
                                   stdio: ['ignore', log, log]});
   const exited = new Promise((resolve) => child.on('exit', resolve));
-  const result = {fresh: [], bytes: 0, vertices: 0};
+  const result = {fresh: [], received: [], bytes: 0, vertices: 0};
   if (withPage) {
     const file = path.join(directory, 'results', 'live_view');
     for (let k = 0; k < 1200 && !fs.existsSync(file); ++k) await sleep(50);
@@ -75,11 +75,13 @@ async function run(name, withPage, browser) {
       await sleep(1000);
       if (done) break;
       const s2 = await page.evaluate(() => ({
-        fresh: window.tissuefem.freshPerSecond, bytes: window.tissuefem.bytesPerFrame,
+        fresh: window.tissuefem.freshPerSecond, received: window.tissuefem.framesReceived,
+        bytes: window.tissuefem.bytesPerFrame,
         n: window.tissuefem.topology ? window.tissuefem.topology.n : 0,
         ended: window.tissuefem.ended}));
       if (s2.ended) break;
       result.fresh.push(s2.fresh);
+      result.received.push(s2.received);
       result.bytes = s2.bytes;
       result.vertices = s2.n;
     }
@@ -134,6 +136,9 @@ try {
     const none = await run(name, false, browser);
     const page = await run(name, true, browser);
     const steady = page.fresh.slice(1);
+    const arrivals = page.received.slice(1).map((r, k) => r - page.received[k]);
+    console.error('%s: frames received per second %s; drawn fresh %s', name, arrivals.join(' '),
+                  page.fresh.join(' '));
     console.log('| %s | %d | %d | %s (%s) | %s | %s / %s | %s | 1.05 | %s / %s |', name, page.vertices,
                 page.bytes, fmt(quantile(steady, 0.5), 0), fmt(Math.min(...steady), 0),
                 name === 'beam' ? '-' : '30', fmt(none.median), fmt(page.median),

@@ -28,7 +28,9 @@ window.tissuefem = view;
 
 const $ = (id) => document.getElementById(id);
 const container = $('view');
-const renderer = new THREE.WebGLRenderer({antialias: true, preserveDrawingBuffer: true});
+// No multisampling: with software WebGL (headless, or no GPU) it costs more
+// than the frame rate can spare.
+const renderer = new THREE.WebGLRenderer({antialias: false});
 renderer.setPixelRatio(window.devicePixelRatio);
 container.appendChild(renderer.domElement);
 const scene3 = new THREE.Scene();
@@ -135,18 +137,34 @@ function drawFrame(f) {
     for (let i = 0; i < f.n; ++i)
       values[i] = Math.hypot(f.u[3 * i], f.u[3 * i + 1], f.u[3 * i + 2]);
   }
-  let lo = Infinity, hi = -Infinity;
-  for (let i = 0; i < f.n; ++i) { lo = Math.min(lo, values[i]); hi = Math.max(hi, values[i]); }
+  // The colour range: the 1st to 99th percentile, so that one hot spot (a
+  // grasped or clamped corner) does not leave the rest in one colour.
+  const sorted = Float32Array.from(values).sort();
+  const lo = sorted[Math.floor(0.01 * (f.n - 1))], hi = sorted[Math.ceil(0.99 * (f.n - 1))];
   const span = hi > lo ? hi - lo : 1;
   for (let i = 0; i < 3 * f.n; ++i) position[i] = reference[i] + f.u[i];
   for (let i = 0; i < f.n; ++i) colour((values[i] - lo) / span, rgb, i);
   mesh.geometry.attributes.position.needsUpdate = true;
   mesh.geometry.attributes.color.needsUpdate = true;
   mesh.geometry.computeVertexNormals();
+  if (f.step !== view.lastStep) {
+    ++view.fresh;
+    view.lastStep = f.step;
+    view.history.push([1e3 * f.stepSeconds, 1e3 * f.budget, f.rate, f.stored, f.kinetic,
+                       Math.max(f.latencyMedian, 0), Math.max(f.latencyP99, 0)]);
+    if (view.history.length > 300) view.history.shift();
+  }
+  showForce(f);
+  // The numbers at most 5 times a second: text layout costs frames.
+  const now = performance.now();
+  if (now - (view.lastText || 0) < 200 && !(f.flags & 1)) return;
+  view.lastText = now;
   const name = view.scene ? view.scene.fields[f.field] : '';
   $('legend-min').textContent = lo.toPrecision(3);
   $('legend-max').textContent = hi.toPrecision(3);
-  $('legend-unit').textContent = name + ' (' + (units[name] || '') + ')';
+  $('legend-unit').textContent = name + ' (' + (units[name] || '') + '), 1st-99th percentile';
+  $('legend-range').textContent = 'whole range ' + sorted[0].toPrecision(3) + ' to ' +
+                                  sorted[f.n - 1].toPrecision(3);
   $('n-step').textContent = f.step;
   $('n-time').textContent = f.time.toPrecision(6) + ' (time units)';
   $('n-wall').textContent = (1e3 * f.stepSeconds).toFixed(2) + ' ms (budget ' +
@@ -159,14 +177,7 @@ function drawFrame(f) {
   $('play').disabled = !view.drives || !(f.flags & 1);
   $('pause').disabled = !view.drives || (f.flags & 1);
   $('pace').value = (f.flags & 2) ? 'wall' : 'fast';
-  showForce(f);
-  if (f.step !== view.lastStep) {
-    ++view.fresh;
-    view.lastStep = f.step;
-    view.history.push([1e3 * f.stepSeconds, 1e3 * f.budget, f.rate, f.stored, f.kinetic,
-                       Math.max(f.latencyMedian, 0), Math.max(f.latencyP99, 0)]);
-    if (view.history.length > 300) view.history.shift();
-  }
+  $('n-force').textContent = view.forceText;
 }
 
 // The mouse: dragging the surface grasps the tissue at the picked point
@@ -187,7 +198,7 @@ function showForce(f) {
   const force = [f.mouse[7], f.mouse[8], f.mouse[9]];
   view.force = holding ? force : [0, 0, 0];
   const size = Math.hypot(force[0], force[1], force[2]);
-  $('n-force').textContent = holding ? size.toPrecision(4) + ' force units' : 'not grasping';
+  view.forceText = holding ? size.toPrecision(4) + ' force units' : 'not grasping';
   if (!holding || !mesh || size === 0) { arrow.visible = false; return; }
   // From the grasped point as it is now (where the mouse put it).
   const p = new THREE.Vector3(f.mouse[1], f.mouse[2], f.mouse[3]);
@@ -219,7 +230,7 @@ const raycaster = new THREE.Raycaster();
 
 // Capture phase on the container: before the orbit controls see it.
 container.addEventListener('mousedown', (event) => {
-  if (event.button !== 0 || !mesh || !view.drives) return;
+  if (event.button !== 0 || !mesh || !view.drives || !view.mouseGrasps) return;
   raycaster.setFromCamera(pointer(event), camera);
   const hit = raycaster.intersectObject(mesh)[0];
   if (!hit) return;
@@ -252,6 +263,42 @@ window.addEventListener('mouseup', () => {
   drag.active = false;
   send('release');
 });
+
+// For scripts (tests, pictures): how much of the canvas is drawn (the share
+// of pixels away from the background) and how many colours it has, read
+// right after a render (the drawing buffer is not kept).
+view.pixelStatistics = () => {
+  renderer.render(scene3, camera);
+  const source = renderer.domElement, c = document.createElement('canvas');
+  c.width = source.width; c.height = source.height;
+  const g = c.getContext('2d');
+  g.drawImage(source, 0, 0);
+  const d = g.getImageData(0, 0, c.width, c.height).data;
+  let differing = 0;
+  const colours = new Set();
+  for (let i = 0; i < d.length; i += 4) {
+    if (Math.abs(d[i] - 0x1d) + Math.abs(d[i + 1] - 0x20) + Math.abs(d[i + 2] - 0x26) > 30) ++differing;
+    colours.add((d[i] >> 3) * 1024 + (d[i + 1] >> 3) * 32 + (d[i + 2] >> 3));
+  }
+  return {share: differing / (d.length / 4), colours: colours.size};
+};
+
+// For scripts (tests, pictures): the page coordinates of a point of the
+// drawn surface, the one nearest the canvas's centre on a grid of rays.
+view.surfacePoint = () => {
+  if (!mesh) return null;
+  const r = renderer.domElement.getBoundingClientRect();
+  let best = null;
+  for (let i = 1; i < 40; ++i)
+    for (let j = 1; j < 40; ++j) {
+      raycaster.setFromCamera(new THREE.Vector2(i / 20 - 1, j / 20 - 1), camera);
+      if (!raycaster.intersectObject(mesh).length) continue;
+      const d = (i - 20) ** 2 + (j - 20) ** 2;
+      if (!best || d < best.d)
+        best = {d: d, x: r.left + (i / 40) * r.width, y: r.top + (1 - j / 40) * r.height};
+    }
+  return best && {x: best.x, y: best.y};
+};
 
 // At most one drag message per animation frame.
 function sendDrag() {
@@ -326,6 +373,10 @@ socket.onmessage = (event) => {
     $('description').textContent = message.file + ': ' + message.description + ', integrator \'' +
       message.integrator + '\', material ' + message.materials + ', time step ' +
       message.time_step + ', output in ' + message.directory + '/';
+    if (message.mouse !== 'grasp')
+      document.querySelector('.hint').textContent = 'The mouse turns the view (' + message.mouse +
+        '): drag to turn, right-drag to pan, wheel to zoom.';
+    view.mouseGrasps = message.mouse === 'grasp';
     const select = $('field');
     select.innerHTML = '';
     message.fields.forEach((name) => select.add(new Option(name, name)));

@@ -228,7 +228,11 @@ namespace tissuefem::postprocess
            + output::json_quote(this->context->directory) + ",\"time_step\":"
            + json_number(time_step) + ",\"budget\":" + json_number(budget)
            + ",\"fields\":[" + fields + "],\"field\":" + std::to_string(field)
-           + ",\"frame_rate\":" + json_number(frame_rate) + "}";
+           + ",\"frame_rate\":" + json_number(frame_rate) + ",\"mouse\":"
+           + (this->context->scene.tools.count("mouse")
+                ? "\"grasp\""
+                : "\"the scene's own grasping tool holds the tissue\"")
+           + "}";
   }
 
 

@@ -61,21 +61,7 @@ try {
     legend: document.getElementById('legend-unit').textContent}));
 
   // Pixel statistics of the drawn canvas.
-  const pixels = await page.evaluate(() => {
-    const source = document.querySelector('#view canvas');
-    const c = document.createElement('canvas');
-    c.width = source.width; c.height = source.height;
-    const g = c.getContext('2d');
-    g.drawImage(source, 0, 0);
-    const d = g.getImageData(0, 0, c.width, c.height).data;
-    let differing = 0;
-    const colours = new Set();
-    for (let i = 0; i < d.length; i += 4) {
-      if (Math.abs(d[i] - 0x1d) + Math.abs(d[i + 1] - 0x20) + Math.abs(d[i + 2] - 0x26) > 30) ++differing;
-      colours.add((d[i] >> 3) * 1024 + (d[i + 1] >> 3) * 32 + (d[i + 2] >> 3));
-    }
-    return {share: differing / (d.length / 4), colours: colours.size};
-  });
+  const pixels = await page.evaluate(() => window.tissuefem.pixelStatistics());
   console.log('canvas: %s of the pixels drawn, %d colours', pixels.share.toFixed(3), pixels.colours);
   check(pixels.share > 0.02 && pixels.colours > 20, 'the canvas is not blank');
   await page.screenshot({path: path.join(work, '1-loaded.png')});
@@ -85,9 +71,8 @@ try {
   await page.click('#play');
   check(await until(() => window.tissuefem.lastStep > 0), 'play advances the steps');
 
-  // Drag from the middle of the canvas (the body is framed there).
-  const box = await (await page.$('#view canvas')).boundingBox();
-  const x0 = box.x + box.width / 2, y0 = box.y + box.height / 2;
+  // Drag from a point of the drawn surface.
+  const {x: x0, y: y0} = await page.evaluate(() => window.tissuefem.surfacePoint());
   await page.mouse.move(x0, y0);
   await page.mouse.down();
   for (let k = 1; k <= 10; ++k) { await page.mouse.move(x0 + 8 * k, y0 - 4 * k); await sleep(50); }
