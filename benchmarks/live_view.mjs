@@ -4,18 +4,21 @@
 //   node benchmarks/live_view.mjs build/tissuefem [muscle liver beam haptic]
 //
 // (needs tests/browser/install.sh's Chromium and puppeteer-core). For each
-// scene, two runs with the live view on, paced as fast as possible,
-// alternating: one with no page, one with a headless Chromium page open
-// from the first step. From the page: fresh frames drawn per second (new
-// steps, sampled each second; median and the lowest after the first
+// scene, three runs with the live view on, paced as fast as possible, one
+// after the other: with no page; with a reader (benchmarks/view_reader.py:
+// a WebSocket client that takes every frame and draws nothing, the
+// streaming's own cost); with a headless Chromium page (software WebGL,
+// started with nice 19 so that on two cores the rendering yields to the
+// simulation, as a GPU would take it off the cores). From the reader:
+// frames received per second; from the page: fresh frames drawn per second
+// (new steps, sampled each second; median and the lowest after the first
 // second) and bytes per frame; from statistics.csv: the step's wall time,
-// median and 95th percentile, without and with the page. Targets: at least
-// 30 fresh frames per second on the muscle and the liver; an open page adds
-// at most 5 % to the median step.
-// 'haptic': the muscle palpation driven at 500 Hz by
-// tests/live/stream_client.py, with and without a page: the device's
-// latency median and 99th percentile (target: a page adds nothing to the
-// 99th percentile).
+// median and 95th percentile. Targets: at least 30 fresh frames per second
+// on the muscle and the liver; an open page adds at most 5 % to the median
+// step. 'haptic': the muscle palpation driven at 500 Hz by
+// tests/live/stream_client.py with no page, the reader and the page: the
+// device's latency median and 99th percentile (target: a page adds nothing
+// to the 99th percentile).
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
@@ -34,7 +37,7 @@ const work = fs.mkdtempSync(path.join(os.tmpdir(), 'live-view-bench-'));
 
 const scenes = {
   muscle: {file: 'parameters/jeffrey_muscle.prm', set: ['Time integration/End time=0.5']},
-  liver: {file: 'parameters/liver_gravity.prm', set: ['Time integration/End time=2']},
+  liver: {file: 'parameters/liver_gravity.prm', set: ['Time integration/End time=30']},
   beam: {file: 'parameters/sofa/beam_large.prm', set: ['Time integration/End time=1']},
 };
 
@@ -49,20 +52,34 @@ function stepSeconds(directory) {
   return lines.slice(1).map((l) => Number(l.split(',')[column]));
 }
 
-async function run(name, withPage, browser) {
+// A reader of every frame (no drawing), started on the run's address file.
+function reader(directory) {
+  const child = spawn('python3', [path.join(here, 'view_reader.py'),
+                                  path.join(directory, 'results', 'live_view')],
+                      {stdio: ['ignore', 'pipe', 'inherit']});
+  let out = '';
+  child.stdout.on('data', (d) => { out += d; });
+  return new Promise((resolve) => child.on('exit', () => {
+    try { resolve(JSON.parse(out)); } catch (e) { resolve({frames: 0, bytes: 0, seconds: 1}); }
+  }));
+}
+
+async function run(name, mode, browser) {
   const s = scenes[name];
-  const directory = path.join(work, name + (withPage ? '-page' : '-none'));
+  const withPage = mode === 'page';
+  const directory = path.join(work, name + '-' + mode);
   fs.mkdirSync(directory, {recursive: true});
   const args = [path.join(root, s.file), '--set', 'Output/Directory=results',
     '--set', 'Output/VTU/Interval=0', '--set', 'Output/Live view/Port=0',
     '--set', 'Output/Live view/Pace=as fast as possible'];
-  if (withPage) args.push('--set', 'Output/Live view/Wait for page=60');
+  if (mode !== 'none') args.push('--set', 'Output/Live view/Wait for page=60');
   for (const x of s.set) args.push('--set', x);
   const log = fs.openSync(path.join(directory, 'run.log'), 'w');
   const child = spawn(exe, args, {cwd: directory,
                                   stdio: ['ignore', log, log]});
   const exited = new Promise((resolve) => child.on('exit', resolve));
   const result = {fresh: [], received: [], bytes: 0, vertices: 0};
+  const reading = mode === 'reader' ? reader(directory) : null;
   if (withPage) {
     const file = path.join(directory, 'results', 'live_view');
     for (let k = 0; k < 1200 && !fs.existsSync(file); ++k) await sleep(50);
@@ -89,23 +106,27 @@ async function run(name, withPage, browser) {
   }
   const code = await exited;
   if (code !== 0) throw new Error(name + ': tissuefem exited ' + code + ', see ' + directory);
+  if (reading) result.reader = await reading;
   const steps = stepSeconds(directory);
   result.median = 1e3 * quantile(steps, 0.5);
   result.p95 = 1e3 * quantile(steps, 0.95);
   return result;
 }
 
-function haptic(withPage, browser) {
-  const directory = path.join(work, 'haptic' + (withPage ? '-page' : '-none'));
+function haptic(mode, browser) {
+  const withPage = mode === 'page';
+  const directory = path.join(work, 'haptic-' + mode);
   const args = [path.join(root, 'tests/live/stream_client.py'), exe,
     path.join(root, 'parameters/muscle_palpation.prm'), directory, '--seconds', '4', '--dim', '3',
-    '--', '--set', 'Contact tool/Live port=0', '--set', 'Time integration/End time=60',
+    '--', '--set', 'Contact/Obstacle 1/Motion=0', '--set', 'Contact tool/Live port=0',
+    '--set', 'Time integration/End time=60',
     '--set', 'Output/Live view/Port=0', '--set', 'Output/Live view/Pace=as fast as possible'];
   return new Promise((resolve) => {
     const child = spawn('python3', args, {stdio: ['ignore', 'pipe', 'inherit']});
     let out = '';
     child.stdout.on('data', (d) => { out += d; });
     let page = null;
+    if (mode === 'reader') reader(directory);
     if (withPage)
       (async () => {
         const file = path.join(directory, 'results', 'live_view');
@@ -121,34 +142,38 @@ function haptic(withPage, browser) {
   });
 }
 
+const niced = path.join(work, 'chromium-nice');
+fs.writeFileSync(niced, '#!/bin/sh\nexec nice -n 19 ' + (process.env.CHROMIUM || '/usr/bin/chromium') + ' "$@"\n');
+fs.chmodSync(niced, 0o755);
 const browser = await puppeteer.launch({
-  executablePath: process.env.CHROMIUM || '/usr/bin/chromium', headless: true,
+  executablePath: niced, headless: true,
   args: ['--headless=new', '--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
 });
 const fmt = (x, d = 2) => (Number.isFinite(x) ? x.toFixed(d) : '-');
 console.log('live view benchmark (%s): fresh frames per second drawn by headless Chromium ' +
             '(software WebGL), bytes per frame, step wall time (ms) without and with a page', exe);
-console.log('| scene | surface vertices | bytes per frame | fresh frames/s, median (lowest) | target | ' +
-            'step median, no page / page (ms) | ratio | target | step p95, no page / page (ms) |');
-console.log('| --- | --- | --- | --- | --- | --- | --- | --- | --- |');
+console.log('| scene | surface vertices | bytes per frame | frames/s to the reader | fresh frames/s drawn, median (lowest) | target | ' +
+            'step median (ms): none / reader / page | ratio reader, page | target | step p95 (ms): none / reader / page |');
+console.log('| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |');
 try {
   for (const name of wanted.filter((n) => scenes[n])) {
-    const none = await run(name, false, browser);
-    const page = await run(name, true, browser);
+    const none = await run(name, 'none', browser);
+    const read = await run(name, 'reader', browser);
+    const page = await run(name, 'page', browser);
     const steady = page.fresh.slice(1);
-    const arrivals = page.received.slice(1).map((r, k) => r - page.received[k]);
-    console.error('%s: frames received per second %s; drawn fresh %s', name, arrivals.join(' '),
-                  page.fresh.join(' '));
-    console.log('| %s | %d | %d | %s (%s) | %s | %s / %s | %s | 1.05 | %s / %s |', name, page.vertices,
-                page.bytes, fmt(quantile(steady, 0.5), 0), fmt(Math.min(...steady), 0),
-                name === 'beam' ? '-' : '30', fmt(none.median), fmt(page.median),
-                fmt(page.median / none.median, 3), fmt(none.p95), fmt(page.p95));
+    console.log('| %s | %d | %d | %s | %s (%s) | %s | %s / %s / %s | %s, %s | 1.05 | %s / %s / %s |', name,
+                page.vertices, page.bytes, fmt(read.reader.frames / read.reader.seconds, 0),
+                fmt(quantile(steady, 0.5), 0), fmt(Math.min(...steady), 0), name === 'beam' ? '-' : '30',
+                fmt(none.median), fmt(read.median), fmt(page.median), fmt(read.median / none.median, 3),
+                fmt(page.median / none.median, 3), fmt(none.p95), fmt(read.p95), fmt(page.p95));
   }
   if (wanted.includes('haptic')) {
-    const a = await haptic(false, browser), b = await haptic(true, browser);
-    console.log('haptic latency (muscle palpation at 500 Hz, ms): no page median %s p99 %s; ' +
-                'page median %s p99 %s; p99 ratio %s (target: 1, nothing added)',
-                fmt(a.median, 3), fmt(a.p99, 3), fmt(b.median, 3), fmt(b.p99, 3), fmt(b.p99 / a.p99, 3));
+    const r = {};
+    for (const mode of ['none', 'reader', 'page']) r[mode] = await haptic(mode, browser);
+    console.log('haptic latency (muscle palpation driven at 500 Hz, ms), median / 99th percentile: ' +
+                'no page %s / %s; reader %s / %s; page %s / %s (target: the 99th percentile unchanged)',
+                fmt(r.none.median, 3), fmt(r.none.p99, 3), fmt(r.reader.median, 3), fmt(r.reader.p99, 3),
+                fmt(r.page.median, 3), fmt(r.page.p99, 3));
   }
 } finally {
   await browser.close();

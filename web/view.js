@@ -147,6 +147,8 @@ function drawFrame(f) {
   mesh.geometry.attributes.position.needsUpdate = true;
   mesh.geometry.attributes.color.needsUpdate = true;
   mesh.geometry.computeVertexNormals();
+  // Picking and culling use it: it follows the body.
+  mesh.geometry.computeBoundingSphere();
   if (f.step !== view.lastStep) {
     ++view.fresh;
     view.lastStep = f.step;

@@ -30,6 +30,13 @@ namespace tissuefem
 
 
   int
+  interruption_received_here()
+  {
+    return static_cast<int>(received);
+  }
+
+
+  int
   interruption_requested()
   {
     return dealii::Utilities::MPI::max(static_cast<int>(received),

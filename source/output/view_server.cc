@@ -31,9 +31,36 @@ namespace tissuefem::output
   using tcp           = net::ip::tcp;
 
   std::string
-  json_quote(const std::string &text)
+  printable(const std::string &text, const std::size_t length)
   {
-    std::string out = "\"";
+    // Whole UTF-8 characters only; any other byte becomes '?', so that a
+    // text frame built from it is valid UTF-8 (browsers close on invalid).
+    std::string out;
+    for (std::size_t i = 0; i < text.size() && out.size() < length;)
+      {
+        const unsigned char c     = text[i];
+        const std::size_t   n     = c < 0x80           ? 1
+                                    : (c >> 5) == 0x6  ? 2
+                                    : (c >> 4) == 0xe  ? 3
+                                    : (c >> 3) == 0x1e ? 4
+                                                       : 0;
+        bool                whole = n > 0 && i + n <= text.size();
+        for (std::size_t k = 1; whole && k < n; ++k)
+          whole = (static_cast<unsigned char>(text[i + k]) >> 6) == 0x2;
+        if (whole)
+          out.append(text, i, n), i += n;
+        else
+          out += '?', ++i;
+      }
+    return out;
+  }
+
+
+  std::string
+  json_quote(const std::string &raw)
+  {
+    const std::string text = printable(raw, raw.size());
+    std::string       out  = "\"";
     for (const unsigned char c : text)
       if (c == '"' || c == '\\')
         out += std::string("\\") + char(c);
@@ -53,7 +80,8 @@ namespace tissuefem::output
   namespace
   {
     /// Most pages at once, queued messages per page, a command's bytes.
-    constexpr std::size_t max_pages = 16, max_queue = 64, max_command = 1024;
+    constexpr std::size_t max_pages = 16, max_queue = 64, max_command = 1024,
+                          max_commands = 256, max_connections = 64;
 
     struct Message
     {
@@ -81,10 +109,14 @@ namespace tissuefem::output
 
   struct ViewServer::Impl
   {
-    Settings          settings;
-    net::io_context   ioc{1};
-    tcp::acceptor     acceptor{ioc};
-    net::steady_timer ticker{ioc}, deadline{ioc};
+    Settings settings;
+    /// Connections open now (HTTP sessions and pages), against
+    /// max_connections; declared before the io_context, whose end ends the
+    /// sessions that count here.
+    std::atomic<unsigned int> connections{0};
+    net::io_context           ioc{1};
+    tcp::acceptor             acceptor{ioc};
+    net::steady_timer         ticker{ioc}, deadline{ioc};
     /// Path -> (content, MIME type): the whole list of what is served.
     std::map<std::string, std::pair<std::string, std::string>> files;
 
@@ -110,6 +142,30 @@ namespace tissuefem::output
       std::lock_guard<std::mutex> guard(lock);
       if (log_lines.size() < 1000)
         log_lines.push_back(line);
+    }
+
+    /// Whether @p origin is this server's page: http://HOST:PORT with HOST
+    /// the bound address, 127.0.0.1, localhost or [::1].
+    bool
+    own_origin(const beast::string_view origin) const
+    {
+      const std::string port
+        = ":" + std::to_string(acceptor.local_endpoint().port());
+      for (const std::string &host : {settings.address,
+                                      std::string("127.0.0.1"),
+                                      std::string("localhost"),
+                                      std::string("[::1]")})
+        if (origin == "http://" + host + port)
+          return true;
+      return false;
+    }
+
+    /// A copy of the open pages to loop over: sending may close a page
+    /// (one that stopped reading), which takes it out of open_pages.
+    std::map<unsigned int, std::shared_ptr<WsPage>>
+    pages_now() const
+    {
+      return open_pages;
     }
 
     void
@@ -138,6 +194,12 @@ namespace tissuefem::output
         : ws(std::move(socket))
         , server(server)
     {
+      ++server.connections;
+    }
+
+    ~WsPage()
+    {
+      --server.connections;
     }
 
     unsigned int id = 0;
@@ -247,6 +309,9 @@ namespace tissuefem::output
           if (!closed)
             {
               closed = true;
+              // Also the socket: a write may still wait on it.
+              beast::error_code ignored;
+              beast::get_lowest_layer(ws).socket().close(ignored);
               server.remove(id,
                             normal ? "closed"
                                    : "connection ended: " + ec.message());
@@ -313,6 +378,12 @@ namespace tissuefem::output
         : stream(std::move(socket))
         , server(server)
     {
+      ++server.connections;
+    }
+
+    ~HttpSession()
+    {
+      --server.connections;
     }
 
     void
@@ -360,6 +431,20 @@ namespace tissuefem::output
                            "no WebSocket here; use /ws\n",
                            "text/plain",
                            false);
+          // A browser names the page that opens the connection: only this
+          // server's own page may watch and drive the run (another web page
+          // open in the same browser may not; clients that are not
+          // browsers send no Origin).
+          const auto origin = request.find(http::field::origin);
+          if (origin != request.end() && !server.own_origin(origin->value()))
+            {
+              server.log("live view: WebSocket from another site refused: "
+                         + printable(std::string(origin->value()), 100));
+              return respond(http::status::forbidden,
+                             "only this server's page may connect\n",
+                             "text/plain",
+                             false);
+            }
           if (server.open_pages.size() >= max_pages || server.closing)
             return respond(http::status::service_unavailable,
                            "too many pages\n",
@@ -434,7 +519,23 @@ namespace tissuefem::output
         {
           if (!acceptor.is_open())
             return;
+          // Out of file descriptors, say: try again a little later instead
+          // of spinning.
           log("live view: accept failed: " + ec.message());
+          deadline.expires_after(std::chrono::milliseconds(100));
+          deadline.async_wait([this](beast::error_code e) {
+            if (!e)
+              accept();
+          });
+          return;
+        }
+      if (connections >= max_connections)
+        {
+          // Too many at once: this one is closed unanswered.
+          log("live view: connection refused: "
+              + std::to_string(max_connections) + " already open");
+          beast::error_code ignored;
+          socket.close(ignored);
         }
       else
         std::make_shared<HttpSession>(std::move(socket), *this)->read();
@@ -446,7 +547,7 @@ namespace tissuefem::output
   void
   ViewServer::Impl::tick()
   {
-    for (const auto &[id, page] : open_pages)
+    for (const auto &[id, page] : pages_now())
       page->offer(frame_id, frame);
     ticker.expires_after(
       std::chrono::microseconds(long(1e6 / settings.frame_rate)));
@@ -465,9 +566,12 @@ namespace tissuefem::output
         page->close_when_sent();
         return;
       }
-    page->id             = next_id++;
-    open_pages[page->id] = page;
-    page_count           = open_pages.size();
+    page->id = next_id++;
+    {
+      std::lock_guard<std::mutex> guard(lock);
+      open_pages[page->id] = page;
+      page_count           = open_pages.size();
+    }
     log("live view: page " + std::to_string(page->id) + " connected");
     if (greeting)
       page->send(false, greeting);
@@ -481,9 +585,16 @@ namespace tissuefem::output
   void
   ViewServer::Impl::remove(const unsigned int id, const std::string &why)
   {
-    if (open_pages.erase(id) == 0)
-      return;
-    page_count = open_pages.size();
+    const bool drove = !open_pages.empty() && open_pages.begin()->first == id;
+    {
+      std::lock_guard<std::mutex> guard(lock);
+      if (open_pages.erase(id) == 0)
+        return;
+      page_count = open_pages.size();
+      // What the driving page held, it lets go of when it leaves.
+      if (drove && !closing)
+        commands.push_back({id, "release"});
+    }
     log("live view: page " + std::to_string(id) + " " + why);
     announce_roles();
     changed.notify_all();
@@ -495,15 +606,16 @@ namespace tissuefem::output
   void
   ViewServer::Impl::announce_roles()
   {
-    if (closing)
+    const auto pages = pages_now();
+    if (closing || pages.empty())
       return;
-    for (const auto &[id, page] : open_pages)
+    const unsigned int driver = pages.begin()->first;
+    for (const auto &[id, page] : pages)
       page->send(false,
                  std::make_shared<const std::string>(
                    std::string("{\"type\":\"role\",\"page\":")
-                   + std::to_string(id) + ",\"drives\":"
-                   + (id == open_pages.begin()->first ? "true" : "false")
-                   + "}"));
+                   + std::to_string(id)
+                   + ",\"drives\":" + (id == driver ? "true" : "false") + "}"));
   }
 
 
@@ -522,9 +634,21 @@ namespace tissuefem::output
             "this one watches\"}"));
         return;
       }
-    std::lock_guard<std::mutex> guard(lock);
-    commands.push_back({id, text});
+    bool full;
+    {
+      std::lock_guard<std::mutex> guard(lock);
+      full = commands.size() >= max_commands;
+      if (!full)
+        commands.push_back({id, text});
+    }
     changed.notify_all();
+    // (Outside the lock: sending may close the page, which takes it.)
+    if (full)
+      page->second->send(false,
+                         std::make_shared<const std::string>(
+                           "{\"type\":\"error\",\"message\":\"too many "
+                           "commands waiting for the run; this one was "
+                           "dropped\"}"));
   }
 
 
@@ -537,8 +661,7 @@ namespace tissuefem::output
     ticker.cancel();
     if (open_pages.empty())
       return ioc.stop();
-    // Copies: closing a page removes it from the map.
-    const auto pages = open_pages;
+    const auto pages = pages_now();
     for (const auto &[id, page] : pages)
       {
         if (farewell)
@@ -644,7 +767,7 @@ namespace tissuefem::output
       impl->topology = bytes;
       // A frame of the old mesh must not follow the new topology.
       impl->frame.reset();
-      for (const auto &[id, page] : impl->open_pages)
+      for (const auto &[id, page] : impl->pages_now())
         page->send(true, bytes);
     });
   }
@@ -665,7 +788,7 @@ namespace tissuefem::output
   {
     auto bytes = std::make_shared<const std::string>(text);
     net::post(impl->ioc, [this, bytes]() {
-      for (const auto &[id, page] : impl->open_pages)
+      for (const auto &[id, page] : impl->pages_now())
         page->send(false, bytes);
     });
   }

@@ -1,5 +1,6 @@
 #include <deal.II/base/mpi.h>
 
+#include <tissuefem/base/interruption.h>
 #include <tissuefem/base/parallel.h>
 #include <tissuefem/output/output_files.h>
 #include <tissuefem/postprocess/live_view.h>
@@ -98,7 +99,8 @@ namespace tissuefem::postprocess
                       "false",
                       Patterns::Bool(),
                       "Whether the run waits after its initial state until "
-                      "a page presses play or step.");
+                      "a page presses play or step (only while a page is "
+                      "open: with 'Wait for page', until one connects).");
     prm.declare_entry("Wait for page",
                       "0",
                       Patterns::Double(0, 3600),
@@ -307,12 +309,13 @@ namespace tissuefem::postprocess
             const auto f
               = std::find(field_names.begin(), field_names.end(), argument);
             if (f == field_names.end())
-              refusal = "no field '" + argument.substr(0, 40) + "'";
+              refusal = "no field '" + output::printable(argument, 40) + "'";
             else
               field = f - field_names.begin();
           }
         else
-          refusal = "unknown command '" + command.text.substr(0, 40) + "'";
+          refusal
+            = "unknown command '" + output::printable(command.text, 40) + "'";
         if (!refusal.empty())
           server->send_to(command.page,
                           "{\"type\":\"error\",\"message\":"
@@ -487,7 +490,8 @@ namespace tissuefem::postprocess
   void
   LiveView<dim>::hold(const double time)
   {
-    while (paused && server->pages() > 0)
+    // A signal ends the pause: the run then stops after this step as usual.
+    while (paused && server->pages() > 0 && !interruption_received_here())
       {
         server->wait(0.1);
         apply_commands(time);

@@ -131,7 +131,9 @@ namespace tissuefem::tool
             shared[2 + dim + d] = asked_drag[d];
           }
         shared[1 + dim] = asked_release ? 1 : 0;
-        asked_grasp.reset();
+        // A grasp asked while the tool still holds waits for the release.
+        if (!held)
+          asked_grasp.reset();
         asked_release = false;
       }
     shared = Utilities::MPI::broadcast(parallel_tools::communicator(), shared);

@@ -6,7 +6,7 @@ Runs SCENE with the live view on, started paused, a driving page connected
 and reading. While it waits, throws at the server, from a fixed seed:
 random bytes, garbage request lines, a header beyond the 8 kB limit, a
 request with a body, unknown methods, traversal paths, half requests,
-upgrades elsewhere and without a key, and, on WebSocket connections,
+upgrades elsewhere, without a key and from another web site (Origin), and, on WebSocket connections,
 unmasked frames, oversized messages, binary messages, bad opcodes,
 invalid UTF-8, fragments, random bytes, watchers' commands and a page
 that never reads. Then the driving page must still get answers, the page
@@ -119,6 +119,14 @@ try:
           "an upgrade elsewhere than /ws is answered 404")
     raw_http(b"GET /ws HTTP/1.1\r\nHost: x\r\nUpgrade: websocket\r\n"
              b"Connection: Upgrade\r\n\r\n")
+    upgrade = (b"GET /ws HTTP/1.1\r\nHost: x\r\nUpgrade: websocket\r\n"
+               b"Connection: Upgrade\r\nSec-WebSocket-Key: "
+               b"AAAAAAAAAAAAAAAAAAAAAA==\r\nSec-WebSocket-Version: 13\r\n")
+    check(status_of(raw_http(upgrade + b"Origin: http://evil.example\r\n\r\n"))
+          == 403, "a WebSocket from another web site is refused (403)")
+    check(status_of(raw_http(upgrade + b"Origin: http://127.0.0.1:%d\r\n\r\n"
+                             % port)) == 101,
+          "a WebSocket from the server's own page is accepted")
     sockets = [socket.create_connection((host, port)) for _ in range(50)]
     for s in sockets:
         s.close()

@@ -19,6 +19,11 @@ namespace tissuefem
   int
   interruption_requested();
 
+  /// The signal this process received, 0 if none; not collective (for a
+  /// process that waits alone, such as the live view's pause).
+  int
+  interruption_received_here();
+
   /// Thrown after an interrupted run has written its outputs.
   class Interrupted : public std::runtime_error
   {

@@ -19,7 +19,10 @@ namespace tissuefem::output
    * read with limits (header 8 kB, no body, 10 s to arrive); a malformed,
    * oversized or slow request is answered 400 (or the connection closed)
    * and logged. WebSocket messages from a page are text commands of at
-   * most 1 kB (longer ones close that page's connection, with a log line).
+   * most 1 kB (longer ones close that page's connection, with a log line);
+   * at most 256 wait for the run; at most 64 connections are open at once.
+   * A browser may connect only from this server's own page (its Origin
+   * header), not from another site open in the same browser.
    *
    * The simulation never waits for a page: it hands over the newest frame
    * (set_frame(), a shared buffer), and the server sends each page the
@@ -31,7 +34,8 @@ namespace tissuefem::output
    *
    * One page drives (the first connected that is still open; when it
    * closes the next one oldest takes over), the others watch: commands
-   * from watchers are refused with a message to that page.
+   * from watchers are refused with a message to that page. When the
+   * driving page leaves, a 'release' command lets go of what it held.
    */
   class ViewServer
   {
@@ -128,7 +132,13 @@ namespace tissuefem::output
     std::unique_ptr<Impl> impl;
   };
 
-  /// @p text as a JSON string literal (quoted, with escapes).
+  /// The first @p length bytes of @p text that form whole UTF-8 characters,
+  /// other bytes replaced by '?' (for text sent to a browser).
+  std::string
+  printable(const std::string &text, const std::size_t length);
+
+  /// @p text as a JSON string literal (quoted, with escapes; bytes that are
+  /// not UTF-8 become '?').
   std::string
   json_quote(const std::string &text);
 } // namespace tissuefem::output
