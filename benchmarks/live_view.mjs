@@ -29,8 +29,17 @@ const here = path.dirname(new URL(import.meta.url).pathname);
 const require = createRequire(path.join(here, '../tests/browser/package.json'));
 const puppeteer = require('puppeteer-core');
 
-const exe = path.resolve(process.argv[2] || 'build/tissuefem');
-const wanted = process.argv.slice(3).length ? process.argv.slice(3) : ['muscle', 'liver', 'beam', 'haptic'];
+// Options: --threads N (tissuefem's threads per run; default: its own
+// choice, all cores), --nice N (Chromium's niceness; default 19).
+const options = {threads: null, nice: 19};
+const positional = [];
+for (let k = 2; k < process.argv.length; ++k)
+  if (process.argv[k] === '--threads') options.threads = process.argv[++k];
+  else if (process.argv[k] === '--nice') options.nice = Number(process.argv[++k]);
+  else positional.push(process.argv[k]);
+const exe = path.resolve(positional[0] || 'build/tissuefem');
+const wanted = positional.slice(1).length ? positional.slice(1) : ['muscle', 'liver', 'beam', 'haptic'];
+const threads = options.threads ? ['--threads', options.threads] : [];
 const root = path.resolve(here, '..');
 const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
 const work = fs.mkdtempSync(path.join(os.tmpdir(), 'live-view-bench-'));
@@ -69,7 +78,7 @@ async function run(name, mode, browser) {
   const withPage = mode === 'page';
   const directory = path.join(work, name + '-' + mode);
   fs.mkdirSync(directory, {recursive: true});
-  const args = [path.join(root, s.file), '--set', 'Output/Directory=results',
+  const args = [path.join(root, s.file), ...threads, '--set', 'Output/Directory=results',
     '--set', 'Output/VTU/Interval=0', '--set', 'Output/Live view/Port=0',
     '--set', 'Output/Live view/Pace=as fast as possible'];
   if (mode !== 'none') args.push('--set', 'Output/Live view/Wait for page=60');
@@ -118,7 +127,7 @@ function haptic(mode, browser) {
   const directory = path.join(work, 'haptic-' + mode);
   const args = [path.join(root, 'tests/live/stream_client.py'), exe,
     path.join(root, 'parameters/muscle_palpation.prm'), directory, '--seconds', '4', '--dim', '3',
-    '--', '--set', 'Contact/Obstacle 1/Motion=0', '--set', 'Contact tool/Live port=0',
+    '--', ...threads, '--set', 'Contact/Obstacle 1/Motion=0', '--set', 'Contact tool/Live port=0',
     '--set', 'Time integration/End time=60',
     '--set', 'Output/Live view/Port=0', '--set', 'Output/Live view/Pace=as fast as possible'];
   return new Promise((resolve) => {
@@ -143,15 +152,17 @@ function haptic(mode, browser) {
 }
 
 const niced = path.join(work, 'chromium-nice');
-fs.writeFileSync(niced, '#!/bin/sh\nexec nice -n 19 ' + (process.env.CHROMIUM || '/usr/bin/chromium') + ' "$@"\n');
+fs.writeFileSync(niced, '#!/bin/sh\nexec nice -n ' + options.nice + ' ' +
+                 (process.env.CHROMIUM || '/usr/bin/chromium') + ' "$@"\n');
 fs.chmodSync(niced, 0o755);
 const browser = await puppeteer.launch({
   executablePath: niced, headless: true,
   args: ['--headless=new', '--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
 });
 const fmt = (x, d = 2) => (Number.isFinite(x) ? x.toFixed(d) : '-');
-console.log('live view benchmark (%s): fresh frames per second drawn by headless Chromium ' +
-            '(software WebGL), bytes per frame, step wall time (ms) without and with a page', exe);
+console.log('live view benchmark (%s, tissuefem threads %s, Chromium at nice %d): fresh frames per ' +
+            'second drawn by headless Chromium (software WebGL), bytes per frame, step wall time (ms) ' +
+            'without and with a page', exe, options.threads || 'default', options.nice);
 console.log('| scene | surface vertices | bytes per frame | frames/s to the reader | fresh frames/s drawn, median (lowest) | target | ' +
             'step median (ms): none / reader / page | ratio reader, page | target | step p95 (ms): none / reader / page |');
 console.log('| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |');

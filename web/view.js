@@ -334,8 +334,32 @@ function chart(id, series, colours, level) {
   g.fillText(hi.toPrecision(3), 2, 10);
 }
 
+// Adaptive resolution: where drawing cannot keep 30 frames a second (a
+// software WebGL, a slow GPU), the canvas is drawn at fewer pixels (down to
+// a third of the screen's) and back up when there is time to spare.
+const pace = {frames: 0, since: performance.now(), ratio: window.devicePixelRatio};
+function adaptResolution() {
+  ++pace.frames;
+  const now = performance.now(), elapsed = now - pace.since;
+  if (elapsed < 1000) return;
+  const rate = 1000 * pace.frames / elapsed;
+  const best = window.devicePixelRatio;
+  let ratio = pace.ratio;
+  if (rate < 40) ratio = Math.max(best / 3, ratio * 0.8);
+  else if (rate > 55) ratio = Math.min(best, ratio * 1.1);
+  if (ratio !== pace.ratio) {
+    pace.ratio = ratio;
+    renderer.setPixelRatio(ratio);
+    resize();
+  }
+  view.pixelRatio = ratio;
+  pace.frames = 0;
+  pace.since = now;
+}
+
 function animate() {
   requestAnimationFrame(animate);
+  adaptResolution();
   sendDrag();
   if (view.pending) { drawFrame(view.pending); view.pending = null; }
   controls.update();

@@ -214,6 +214,8 @@ namespace tissuefem::output
       timeouts.keep_alive_pings = true;
       ws.set_option(timeouts);
       ws.read_message_max(max_command);
+      // A frame is one WebSocket frame, not pieces of 4 kB.
+      ws.auto_fragment(false);
       ws.async_accept(request,
                       [self = shared_from_this()](beast::error_code ec) {
                         if (ec)

@@ -231,9 +231,10 @@ namespace tissuefem::postprocess
            + json_number(time_step) + ",\"budget\":" + json_number(budget)
            + ",\"fields\":[" + fields + "],\"field\":" + std::to_string(field)
            + ",\"frame_rate\":" + json_number(frame_rate) + ",\"mouse\":"
-           + (this->context->scene.tools.count("mouse")
-                ? "\"grasp\""
-                : "\"the scene's own grasping tool holds the tissue\"")
+           + (this->context->scene.tools.count("mouse") ? "\"grasp\""
+              : this->context->scene.tools.count("grasp")
+                ? "\"the scene's own grasping tool holds the tissue\""
+                : "\"the mesh adapts\"")
            + "}";
   }
 

@@ -42,7 +42,12 @@ namespace tissuefem::tool
     prm.enter_subsection("Mouse");
     const double radius = prm.get_double("Grasp radius");
     prm.leave_subsection();
-    if (dim < 2 || !view || grasping_tool)
+    // Held vertices are those of the mesh at the grasp: not on a mesh that
+    // adapts.
+    prm.enter_subsection("Mesh refinement");
+    const bool adaptive = prm.get("Indicator") != "none";
+    prm.leave_subsection();
+    if (dim < 2 || !view || grasping_tool || adaptive)
       return nullptr;
     return std::make_unique<MouseGrasp<dim>>(radius, mesh);
   }

@@ -104,16 +104,29 @@ class WebSocket:
         data, self.buffer = self.buffer[:n], self.buffer[n:]
         return data
 
-    def receive(self):
-        """The next message: (opcode, payload); opcode 8 is a close."""
+    def _frame(self):
         first, second = self._read(2)
         n = second & 0x7F
         if n == 126:
             n = struct.unpack("!H", self._read(2))[0]
         elif n == 127:
             n = struct.unpack("!Q", self._read(8))[0]
-        payload = self._read(n)
-        return first & 0x0F, payload
+        return first & 0x80 != 0, first & 0x0F, self._read(n)
+
+    def receive(self):
+        """The next message: (opcode, payload), its fragments joined;
+        opcode 8 is a close. Pings are answered and skipped."""
+        while True:
+            fin, opcode, payload = self._frame()
+            if opcode == 9:
+                self.raw(self.frame(10, payload))
+                continue
+            if opcode == 10:
+                continue
+            while not fin:
+                fin, _, more = self._frame()
+                payload += more
+            return opcode, payload
 
     def close(self):
         try:

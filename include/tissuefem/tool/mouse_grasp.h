@@ -22,7 +22,8 @@ namespace tissuefem::tool
    * held and follow the drag, u = u_grasp + D(t), until the page lets go.
    * It exists in runs with a live view ('Output/Live view/Port' >= 0, dim
    * 2 or 3) whose scene has no grasping tool of its own (the solid holds
-   * one set of vertices at a time).
+   * one set of vertices at a time) and no adaptive mesh (held vertices are
+   * those of one mesh).
    *
    * The page's requests arrive on process 0 (request_grasp(), request_drag(),
    * request_release(), from the live view), at any time; synchronize(),
