@@ -30,12 +30,15 @@ const require = createRequire(path.join(here, '../tests/browser/package.json'));
 const puppeteer = require('puppeteer-core');
 
 // Options: --threads N (tissuefem's threads per run; default: its own
-// choice, all cores), --nice N (Chromium's niceness; default 19).
-const options = {threads: null, nice: 19};
+// choice, all cores), --nice N (Chromium's niceness; default 19),
+// --repeats R (each mode R times, alternating; the figures are the median
+// over the repeats, the ranges [lowest, highest]; default 3).
+const options = {threads: null, nice: 19, repeats: 3};
 const positional = [];
 for (let k = 2; k < process.argv.length; ++k)
   if (process.argv[k] === '--threads') options.threads = process.argv[++k];
   else if (process.argv[k] === '--nice') options.nice = Number(process.argv[++k]);
+  else if (process.argv[k] === '--repeats') options.repeats = Number(process.argv[++k]);
   else positional.push(process.argv[k]);
 const exe = path.resolve(positional[0] || 'build/tissuefem');
 const wanted = positional.slice(1).length ? positional.slice(1) : ['muscle', 'liver', 'beam', 'haptic'];
@@ -73,10 +76,11 @@ function reader(directory) {
   }));
 }
 
+let runCount = 0;
 async function run(name, mode, browser) {
   const s = scenes[name];
   const withPage = mode === 'page';
-  const directory = path.join(work, name + '-' + mode);
+  const directory = path.join(work, name + '-' + mode + '-' + (++runCount));
   fs.mkdirSync(directory, {recursive: true});
   const args = [path.join(root, s.file), ...threads, '--set', 'Output/Directory=results',
     '--set', 'Output/VTU/Interval=0', '--set', 'Output/Live view/Port=0',
@@ -124,7 +128,7 @@ async function run(name, mode, browser) {
 
 function haptic(mode, browser) {
   const withPage = mode === 'page';
-  const directory = path.join(work, 'haptic-' + mode);
+  const directory = path.join(work, 'haptic-' + mode + '-' + (++runCount));
   const args = [path.join(root, 'tests/live/stream_client.py'), exe,
     path.join(root, 'parameters/muscle_palpation.prm'), directory, '--seconds', '4', '--dim', '3',
     '--', ...threads, '--set', 'Contact/Obstacle 1/Motion=0', '--set', 'Contact tool/Live port=0',
@@ -163,28 +167,39 @@ const fmt = (x, d = 2) => (Number.isFinite(x) ? x.toFixed(d) : '-');
 console.log('live view benchmark (%s, tissuefem threads %s, Chromium at nice %d): fresh frames per ' +
             'second drawn by headless Chromium (software WebGL), bytes per frame, step wall time (ms) ' +
             'without and with a page', exe, options.threads || 'default', options.nice);
-console.log('| scene | surface vertices | bytes per frame | frames/s to the reader | fresh frames/s drawn, median (lowest) | target | ' +
-            'step median (ms): none / reader / page | ratio reader, page | target | step p95 (ms): none / reader / page |');
+console.log('| scene | surface vertices | bytes per frame | frames/s to the reader | fresh frames/s drawn [range over repeats] | target | ' +
+            'step median (ms): none / reader / page | ratio to none: reader, page [range] | target | step p95 (ms): none / reader / page |');
 console.log('| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |');
+const median = (v) => quantile(v, 0.5);
+const range = (v, d = 2) => '[' + fmt(Math.min(...v), d) + ', ' + fmt(Math.max(...v), d) + ']';
 try {
   for (const name of wanted.filter((n) => scenes[n])) {
-    const none = await run(name, 'none', browser);
-    const read = await run(name, 'reader', browser);
-    const page = await run(name, 'page', browser);
-    const steady = page.fresh.slice(1);
-    console.log('| %s | %d | %d | %s | %s (%s) | %s | %s / %s / %s | %s, %s | 1.05 | %s / %s / %s |', name,
-                page.vertices, page.bytes, fmt(read.reader.frames / read.reader.seconds, 0),
-                fmt(quantile(steady, 0.5), 0), fmt(Math.min(...steady), 0), name === 'beam' ? '-' : '30',
-                fmt(none.median), fmt(read.median), fmt(page.median), fmt(read.median / none.median, 3),
-                fmt(page.median / none.median, 3), fmt(none.p95), fmt(read.p95), fmt(page.p95));
+    const r = {none: [], reader: [], page: []};
+    for (let k = 0; k < options.repeats; ++k)
+      for (const mode of ['none', 'reader', 'page']) r[mode].push(await run(name, mode, browser));
+    const fresh = r.page.map((p) => median(p.fresh.slice(1)));
+    const lowest = Math.min(...r.page.map((p) => Math.min(...p.fresh.slice(1))));
+    const rate = r.reader.map((x) => x.reader.frames / x.reader.seconds);
+    const med = (mode) => r[mode].map((x) => x.median), p95 = (mode) => r[mode].map((x) => x.p95);
+    // Ratios within each repeat (runs next to each other), then their median.
+    const ratio = (mode) => med(mode).map((m, k) => m / med('none')[k]);
+    console.log('| %s | %d | %d | %s | %s %s (lowest %s) | %s | %s / %s / %s | %s %s, %s %s | 1.05 | %s / %s / %s |',
+                name, r.page[0].vertices, r.page[0].bytes, fmt(median(rate), 0), fmt(median(fresh), 0),
+                range(fresh, 0), fmt(lowest, 0), name === 'beam' ? '-' : '30', fmt(median(med('none'))),
+                fmt(median(med('reader'))), fmt(median(med('page'))), fmt(median(ratio('reader')), 3),
+                range(ratio('reader')), fmt(median(ratio('page')), 3), range(ratio('page')),
+                fmt(median(p95('none'))), fmt(median(p95('reader'))), fmt(median(p95('page'))));
   }
   if (wanted.includes('haptic')) {
-    const r = {};
-    for (const mode of ['none', 'reader', 'page']) r[mode] = await haptic(mode, browser);
+    const r = {none: [], reader: [], page: []};
+    for (let k = 0; k < options.repeats; ++k)
+      for (const mode of ['none', 'reader', 'page']) r[mode].push(await haptic(mode, browser));
+    const m = (mode, key) => fmt(median(r[mode].map((x) => x[key])), 3) + ' ' +
+                             range(r[mode].map((x) => x[key]), 3);
     console.log('haptic latency (muscle palpation driven at 500 Hz, ms), median / 99th percentile: ' +
                 'no page %s / %s; reader %s / %s; page %s / %s (target: the 99th percentile unchanged)',
-                fmt(r.none.median, 3), fmt(r.none.p99, 3), fmt(r.reader.median, 3), fmt(r.reader.p99, 3),
-                fmt(r.page.median, 3), fmt(r.page.p99, 3));
+                m('none', 'median'), m('none', 'p99'), m('reader', 'median'), m('reader', 'p99'),
+                m('page', 'median'), m('page', 'p99'));
   }
 } finally {
   await browser.close();
