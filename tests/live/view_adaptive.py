@@ -26,18 +26,10 @@ import websocket_client as wc  # noqa: E402
 
 exe, scene, expected, work = sys.argv[1:5]
 shutil.rmtree(work, ignore_errors=True)
-failures = []
+check = wc.Checks()
 
 
-def check(condition, what):
-    if not condition:
-        failures.append(what)
-        print("FAILED:", what)
-
-
-E, nu = 1000.0, 0.3
-lam = E * nu / ((1 + nu) * (1 - 2 * nu))
-mu = E / (2 * (1 + nu))
+lam, mu = wc.lame(1000.0, 0.3)
 
 
 def lateral(t):
@@ -100,7 +92,7 @@ check(frames == 5 and len(meshes) >= 3,
       (frames, len(meshes)))
 check(wc.same_summary(os.path.join(work, "output"), expected),
       "summary file equals the closed form (the mouse's force lines zero)")
-if failures:
+if check.failures:
     print(open(os.path.join(work, "run.log")).read()[-3000:])
     sys.exit(1)
 print("live view adaptive: all checks passed")

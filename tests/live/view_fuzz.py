@@ -29,13 +29,7 @@ exe, scene, expected, work = sys.argv[1:5]
 seed = int(sys.argv[5]) if len(sys.argv) > 5 else 20261128
 rng = random.Random(seed)
 shutil.rmtree(work, ignore_errors=True)
-failures = []
-
-
-def check(condition, what):
-    if not condition:
-        failures.append(what)
-        print("FAILED:", what)
+check = wc.Checks()
 
 
 def raw_http(data, read=True):
@@ -177,7 +171,7 @@ check(wc.same_summary(os.path.join(work, "output"), expected),
 log = open(os.path.join(work, "run.log")).read()
 check("malformed HTTP request refused" in log, "refusals are logged")
 check("no such page file" in log, "unknown paths are logged")
-if failures:
+if check.failures:
     print(log[-3000:])
     sys.exit(1)
 print("live view fuzz (seed %d): all checks passed" % seed)

@@ -32,13 +32,7 @@ import websocket_client as wc  # noqa: E402
 exe, scene, work = sys.argv[1:4]
 processes = int(sys.argv[4]) if len(sys.argv) > 4 else 1
 shutil.rmtree(work, ignore_errors=True)
-failures = []
-
-
-def check(condition, what):
-    if not condition:
-        failures.append(what)
-        print("FAILED:", what)
+check = wc.Checks()
 
 
 run, host, port = wc.start_run(exe, scene, work, [
@@ -130,7 +124,7 @@ check(peak > 0 and abs(work_done - peak) <= 0.02 * peak,
       "work of the mouse %g against stored energy %g" % (work_done, peak))
 print("work of the mouse %.6g, stored energy %.6g (relative difference %.2e)"
       % (work_done, peak, abs(work_done - peak) / peak))
-if failures:
+if check.failures:
     print(open(os.path.join(work, "run.log")).read()[-3000:])
     sys.exit(1)
 print("live view mouse: all checks passed")

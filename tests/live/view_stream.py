@@ -32,18 +32,10 @@ import websocket_client as wc  # noqa: E402
 exe, scene, expected, work = sys.argv[1:5]
 processes = int(sys.argv[5]) if len(sys.argv) > 5 else 1
 shutil.rmtree(work, ignore_errors=True)
-failures = []
+check = wc.Checks()
 
 
-def check(condition, what):
-    if not condition:
-        failures.append(what)
-        print("FAILED:", what)
-
-
-E, nu = 1000.0, 0.3
-lam = E * nu / ((1 + nu) * (1 - 2 * nu))
-mu = E / (2 * (1 + nu))
+lam, mu = wc.lame(1000.0, 0.3)
 
 
 def closed_form(t):
@@ -194,7 +186,7 @@ check(wc.same_summary(os.path.join(work, "output"), expected),
       "summary file equals the closed form (the mouse's force lines zero)")
 log = open(os.path.join(work, "run.log")).read()
 check("live view: page 1 connected" in log, "the log names the pages")
-if failures:
+if check.failures:
     print(log[-3000:])
     sys.exit(1)
 print("live view stream: all checks passed")

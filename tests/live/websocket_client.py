@@ -11,6 +11,24 @@ import subprocess
 import time
 
 
+class Checks:
+    """check(condition, what): records and prints a failed check; the
+    failures are in check.failures."""
+
+    def __init__(self):
+        self.failures = []
+
+    def __call__(self, condition, what):
+        if not condition:
+            self.failures.append(what)
+            print("FAILED:", what)
+
+
+def lame(E, nu):
+    """Lame's lambda and mu from Young's modulus and Poisson's ratio."""
+    return E * nu / ((1 + nu) * (1 - 2 * nu)), E / (2 * (1 + nu))
+
+
 def start_run(exe, scene, work, settings, processes=1):
     """Starts tissuefem on SCENE in WORK with --set SETTINGS (on PROCESSES
     MPI processes); returns the process and the page's address (from
