@@ -149,6 +149,7 @@ namespace tissuefem::postprocess
     prm.enter_subsection("Materials");
     models = prm.get("Model");
     prm.leave_subsection();
+    mouse_unavailable = tool::MouseGrasp<dim>::unavailable(prm);
   }
 
 
@@ -231,10 +232,8 @@ namespace tissuefem::postprocess
            + json_number(time_step) + ",\"budget\":" + json_number(budget)
            + ",\"fields\":[" + fields + "],\"field\":" + std::to_string(field)
            + ",\"frame_rate\":" + json_number(frame_rate) + ",\"mouse\":"
-           + (this->context->scene.tools.count("mouse") ? "\"grasp\""
-              : this->context->scene.tools.count("grasp")
-                ? "\"the scene's own grasping tool holds the tissue\""
-                : "\"the mesh adapts\"")
+           + (mouse_unavailable.empty() ? std::string("\"grasp\"")
+                                        : output::json_quote(mouse_unavailable))
            + "}";
   }
 
@@ -339,8 +338,7 @@ namespace tissuefem::postprocess
           ? nullptr
           : dynamic_cast<tool::MouseGrasp<dim> *>(found->second.get());
     if (!mouse)
-      return "the mouse cannot grasp in this scene (its own grasping tool "
-             "holds the tissue)";
+      return "the mouse cannot grasp in this run: " + mouse_unavailable;
     if (verb == "release")
       {
         mouse->request_release();

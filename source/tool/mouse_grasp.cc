@@ -28,10 +28,11 @@ namespace tissuefem::tool
 
 
   template <int dim>
-  std::unique_ptr<Interface<dim>>
-  MouseGrasp<dim>::create(ParameterHandler &prm, const Triangulation<dim> &mesh)
+  std::string
+  MouseGrasp<dim>::unavailable(ParameterHandler &prm)
   {
     prm.enter_subsection("Output");
+    const bool checkpoints = prm.get_integer("Checkpoint interval") > 0;
     prm.enter_subsection("Live view");
     const bool view = prm.get_integer("Port") >= 0;
     prm.leave_subsection();
@@ -39,16 +40,36 @@ namespace tissuefem::tool
     prm.enter_subsection("Tool");
     const bool grasping_tool = !Utilities::trim(prm.get("Grasp point")).empty();
     prm.leave_subsection();
-    prm.enter_subsection("Mouse");
-    const double radius = prm.get_double("Grasp radius");
-    prm.leave_subsection();
-    // Held vertices are those of the mesh at the grasp: not on a mesh that
-    // adapts.
     prm.enter_subsection("Mesh refinement");
     const bool adaptive = prm.get("Indicator") != "none";
     prm.leave_subsection();
-    if (dim < 2 || !view || grasping_tool || adaptive)
+    if (!view)
+      return "no live view";
+    if (dim < 2)
+      return "a 1D body has no surface to pick";
+    // The solid holds one set of vertices at a time.
+    if (grasping_tool)
+      return "the scene's own grasping tool holds the tissue";
+    // Held vertices are those of the mesh at the grasp.
+    if (adaptive)
+      return "the mesh adapts";
+    // A scene with a tool cannot be checkpointed: the mouse would make a
+    // run with periodic checkpoints fail.
+    if (checkpoints)
+      return "the run writes checkpoints ('Output/Checkpoint interval')";
+    return {};
+  }
+
+
+  template <int dim>
+  std::unique_ptr<Interface<dim>>
+  MouseGrasp<dim>::create(ParameterHandler &prm, const Triangulation<dim> &mesh)
+  {
+    if (!unavailable(prm).empty())
       return nullptr;
+    prm.enter_subsection("Mouse");
+    const double radius = prm.get_double("Grasp radius");
+    prm.leave_subsection();
     return std::make_unique<MouseGrasp<dim>>(radius, mesh);
   }
 

@@ -88,6 +88,8 @@ namespace tissuefem::postprocess
     std::vector<std::string> field_names;
     /// What the greeting names: integrator, models, time step, budget.
     std::string integrator, models;
+    /// Why the mouse cannot grasp in this run (empty: it can).
+    std::string mouse_unavailable;
     double      time_step = 0, budget = 0;
 
     output::ViewServer::Settings                  settings;

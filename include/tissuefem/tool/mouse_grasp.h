@@ -22,8 +22,9 @@ namespace tissuefem::tool
    * held and follow the drag, u = u_grasp + D(t), until the page lets go.
    * It exists in runs with a live view ('Output/Live view/Port' >= 0, dim
    * 2 or 3) whose scene has no grasping tool of its own (the solid holds
-   * one set of vertices at a time) and no adaptive mesh (held vertices are
-   * those of one mesh).
+   * one set of vertices at a time), no adaptive mesh (held vertices are
+   * those of one mesh) and no periodic checkpoints (a scene with a tool
+   * has none): unavailable() says which.
    *
    * The page's requests arrive on process 0 (request_grasp(), request_drag(),
    * request_release(), from the live view), at any time; synchronize(),
@@ -41,7 +42,12 @@ namespace tissuefem::tool
     static void
     declare_parameters(ParameterHandler &prm);
 
-    /// The tool, if the run has a live view and no grasping tool; else null.
+    /// Why a run with the parameters @p prm has no mouse tool (empty: it
+    /// has one).
+    static std::string
+    unavailable(ParameterHandler &prm);
+
+    /// The tool, unless unavailable(); else null.
     static std::unique_ptr<Interface<dim>>
     create(ParameterHandler &prm, const Triangulation<dim> &mesh);
 
