@@ -107,6 +107,31 @@ namespace tissuefem::output
 
   class WsPage;
 
+  namespace
+  {
+    /// Counts a connection in @p count for as long as it lives.
+    class Counted
+    {
+    public:
+      explicit Counted(std::atomic<unsigned int> &count)
+          : count(count)
+      {
+        ++count;
+      }
+      ~Counted()
+      {
+        --count;
+      }
+      Counted(const Counted &) = delete;
+      Counted &
+      operator=(const Counted &)
+        = delete;
+
+    private:
+      std::atomic<unsigned int> &count;
+    };
+  } // namespace
+
   struct ViewServer::Impl
   {
     Settings settings;
@@ -191,15 +216,10 @@ namespace tissuefem::output
   {
   public:
     WsPage(tcp::socket &&socket, ViewServer::Impl &server)
-        : ws(std::move(socket))
+        : counted(server.connections)
+        , ws(std::move(socket))
         , server(server)
     {
-      ++server.connections;
-    }
-
-    ~WsPage()
-    {
-      --server.connections;
     }
 
     unsigned int id = 0;
@@ -280,6 +300,7 @@ namespace tissuefem::output
     }
 
   private:
+    Counted                              counted;
     websocket::stream<beast::tcp_stream> ws;
     ViewServer::Impl                    &server;
     beast::flat_buffer                   in;
@@ -377,15 +398,10 @@ namespace tissuefem::output
   {
   public:
     HttpSession(tcp::socket &&socket, ViewServer::Impl &server)
-        : stream(std::move(socket))
+        : counted(server.connections)
+        , stream(std::move(socket))
         , server(server)
     {
-      ++server.connections;
-    }
-
-    ~HttpSession()
-    {
-      --server.connections;
     }
 
     void
@@ -405,6 +421,7 @@ namespace tissuefem::output
     }
 
   private:
+    Counted                                               counted;
     beast::tcp_stream                                     stream;
     ViewServer::Impl                                     &server;
     beast::flat_buffer                                    buffer{16 * 1024};

@@ -141,11 +141,13 @@ namespace tissuefem::postprocess
     settings.three_directory = prm.get("three.js directory");
     prm.leave_subsection();
     prm.leave_subsection();
-    prm.enter_subsection("Time integration");
-    integrator = prm.get("Integrator");
-    time_step  = prm.get_double("Time step");
-    budget     = prm.get_double("Real-time budget");
-    prm.leave_subsection();
+    // The run's own reading (the integrator's canonical name, as in the
+    // run's first line).
+    time::TimeParameters time_parameters;
+    time_parameters.parse_parameters(prm);
+    integrator = time_parameters.integrator;
+    time_step  = time_parameters.time_step;
+    budget     = time_parameters.real_time_budget;
     prm.enter_subsection("Materials");
     models = prm.get("Model");
     prm.leave_subsection();
@@ -320,10 +322,29 @@ namespace tissuefem::postprocess
           server->send_to(command.page,
                           "{\"type\":\"error\",\"message\":"
                             + output::json_quote(refusal) + "}");
-        // Pacing starts again from now.
-        pace_wall_origin = Clock::now();
-        pace_time_origin = time;
+        restart_pacing(time);
       }
+  }
+
+
+  template <int dim>
+  void
+  LiveView<dim>::restart_pacing(const double time)
+  {
+    pace_wall_origin = Clock::now();
+    pace_time_origin = time;
+  }
+
+
+  template <int dim>
+  tool::MouseGrasp<dim> *
+  LiveView<dim>::mouse() const
+  {
+    const auto &tools = this->context->scene.tools;
+    const auto  found = tools.find("mouse");
+    return found == tools.end()
+             ? nullptr
+             : dynamic_cast<tool::MouseGrasp<dim> *>(found->second.get());
   }
 
 
@@ -332,11 +353,7 @@ namespace tissuefem::postprocess
   LiveView<dim>::mouse_command(const std::string &verb,
                                const std::string &argument)
   {
-    const auto found = this->context->scene.tools.find("mouse");
-    auto      *mouse
-      = found == this->context->scene.tools.end()
-          ? nullptr
-          : dynamic_cast<tool::MouseGrasp<dim> *>(found->second.get());
+    tool::MouseGrasp<dim> *mouse = this->mouse();
     if (!mouse)
       return "the mouse cannot grasp in this run: " + mouse_unavailable;
     if (verb == "release")
@@ -386,9 +403,10 @@ namespace tissuefem::postprocess
   void
   LiveView<dim>::send_frame(const Step<dim> &step, const double waited)
   {
-    const auto                 start = Clock::now();
-    const auto                &scene = this->context->scene;
-    const auto                &solid = *scene.solid;
+    const auto  start = Clock::now();
+    const auto &scene = this->context->scene;
+    // Not const: the energies below keep what they computed.
+    auto                      &solid = *scene.solid;
     std::vector<Vector<float>> cells;
     const std::string         &name = field_names[field];
     if (name == "J" || name == "von Mises")
@@ -414,9 +432,8 @@ namespace tissuefem::postprocess
       }
     // Collective; the statistics reuse the stored energy (Solid caches
     // the last state's).
-    auto              &energies = *scene.solid;
-    const double       stored   = energies.stored_energy(step.state.u);
-    const double       kinetic  = energies.kinetic_energy(step.state.v);
+    const double       stored  = solid.stored_energy(step.state.u);
+    const double       kinetic = solid.kinetic_energy(step.state.v);
     std::vector<float> displacement;
     std::vector<std::vector<float>> values;
     surface->gather(scene.discretization->dof_handler,
@@ -463,12 +480,7 @@ namespace tissuefem::postprocess
     // The mouse: holding (0 or 1), the grasp point (reference), the
     // displacement it imposes, the force on it after the previous step.
     std::vector<float> mouse_block(10, 0.f);
-    const auto         found = scene.tools.find("mouse");
-    if (const auto *mouse
-        = found == scene.tools.end()
-            ? nullptr
-            : dynamic_cast<const tool::MouseGrasp<dim> *>(found->second.get());
-        mouse && mouse->holding())
+    if (const auto *mouse = this->mouse(); mouse && mouse->holding())
       {
         mouse_block[0] = 1;
         for (unsigned int d = 0; d < dim; ++d)
@@ -499,10 +511,9 @@ namespace tissuefem::postprocess
     if (step_once)
       {
         // The next step runs, then the run pauses again.
-        step_once        = false;
-        paused           = server->pages() > 0;
-        pace_wall_origin = Clock::now();
-        pace_time_origin = time;
+        step_once = false;
+        paused    = server->pages() > 0;
+        restart_pacing(time);
         return;
       }
     paused = false;
@@ -532,14 +543,11 @@ namespace tissuefem::postprocess
   {
     if (!server)
       return;
-    server->finish("{\"type\":\"end\",\"time\":" + json_number(state.time)
-                   + ",\"frames\":" + std::to_string(frames) + "}");
     print_log();
     parallel_tools::screen()
       << "live view: " << frames << " frames sent" << std::endl;
-    server->close();
-    print_log();
-    server.reset();
+    close_with("{\"type\":\"end\",\"time\":" + json_number(state.time)
+               + ",\"frames\":" + std::to_string(frames) + "}");
   }
 
   template <int dim>
@@ -548,8 +556,16 @@ namespace tissuefem::postprocess
   {
     if (!server)
       return;
-    server->finish("{\"type\":\"error\",\"fatal\":true,\"message\":"
-                   + output::json_quote(what) + "}");
+    close_with("{\"type\":\"error\",\"fatal\":true,\"message\":"
+               + output::json_quote(what) + "}");
+  }
+
+
+  template <int dim>
+  void
+  LiveView<dim>::close_with(const std::string &last_message)
+  {
+    server->finish(last_message);
     server->close();
     print_log();
     server.reset();

@@ -13,6 +13,22 @@
 
 namespace tissuefem::tool
 {
+  template <int dim>
+  std::vector<unsigned int>
+  vertices_within(const Triangulation<dim> &mesh,
+                  const Point<dim>         &point,
+                  const double              radius)
+  {
+    std::vector<unsigned int> vertices;
+    const auto               &points = mesh.get_vertices();
+    const auto               &used   = mesh.get_used_vertices();
+    for (unsigned int v = 0; v < points.size(); ++v)
+      if (used[v] && points[v].distance(point) <= radius)
+        vertices.push_back(v);
+    return vertices;
+  }
+
+
   void
   ToolParameters::declare_parameters(ParameterHandler &prm)
   {
@@ -96,11 +112,7 @@ namespace tissuefem::tool
               + std::to_string(coordinates.size()));
     for (unsigned int d = 0; d < dim; ++d)
       grasp_point[d] = coordinates[d];
-    const auto &points = mesh.get_vertices();
-    const auto &used   = mesh.get_used_vertices();
-    for (unsigned int v = 0; v < points.size(); ++v)
-      if (used[v] && points[v].distance(grasp_point) <= p.radius)
-        vertices.push_back(v);
+    vertices = vertices_within(mesh, grasp_point, p.radius);
     require(!vertices.empty(),
             "Tool/Grasp radius",
             "holds no vertex: none lies within " + std::to_string(p.radius)
@@ -253,6 +265,13 @@ namespace tissuefem::tool
       return nullptr;
     return std::make_unique<GraspTool<dim>>(parameters, mesh);
   }
+
+  template std::vector<unsigned int>
+  vertices_within(const Triangulation<1> &, const Point<1> &, const double);
+  template std::vector<unsigned int>
+  vertices_within(const Triangulation<2> &, const Point<2> &, const double);
+  template std::vector<unsigned int>
+  vertices_within(const Triangulation<3> &, const Point<3> &, const double);
 
   template class GraspTool<1>;
   template class GraspTool<2>;

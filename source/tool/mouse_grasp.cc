@@ -1,11 +1,12 @@
 #include <deal.II/base/mpi.h>
+#include <deal.II/grid/grid_tools.h>
 
 #include <tissuefem/base/input_error.h>
 #include <tissuefem/base/parallel.h>
+#include <tissuefem/tool/grasp_tool.h>
 #include <tissuefem/tool/mouse_grasp.h>
 
 #include <cmath>
-#include <limits>
 #include <sstream>
 
 namespace tissuefem::tool
@@ -90,19 +91,8 @@ namespace tissuefem::tool
     diameter = body_diameter;
     if (radius == 0)
       radius = 0.03 * diameter;
-    for (unsigned int d = 0; d < dim; ++d)
-      {
-        lower[d] = std::numeric_limits<double>::max();
-        upper[d] = -lower[d];
-      }
-    const auto &used = mesh.get_used_vertices();
-    for (unsigned int v = 0; v < mesh.n_vertices(); ++v)
-      if (used[v])
-        for (unsigned int d = 0; d < dim; ++d)
-          {
-            lower[d] = std::min(lower[d], mesh.get_vertices()[v][d]);
-            upper[d] = std::max(upper[d], mesh.get_vertices()[v][d]);
-          }
+    bounds = GridTools::compute_bounding_box(mesh);
+    bounds.extend(0.1 * diameter);
   }
 
 
@@ -111,9 +101,10 @@ namespace tissuefem::tool
   MouseGrasp<dim>::request_grasp(const Point<dim> &point)
   {
     for (unsigned int d = 0; d < dim; ++d)
-      if (!std::isfinite(point[d]) || point[d] < lower[d] - 0.1 * diameter
-          || point[d] > upper[d] + 0.1 * diameter)
+      if (!std::isfinite(point[d]))
         return "grasp point outside the body";
+    if (!bounds.point_inside(point))
+      return "grasp point outside the body";
     asked_grasp = point;
     asked_drag  = Tensor<1, dim>();
     return {};
@@ -167,22 +158,9 @@ namespace tissuefem::tool
       {
         for (unsigned int d = 0; d < dim; ++d)
           grasp_point[d] = shared[1 + d];
-        vertices.clear();
-        const auto  &points  = mesh.get_vertices();
-        const auto  &used    = mesh.get_used_vertices();
-        unsigned int nearest = 0;
-        double       closest = std::numeric_limits<double>::max();
-        for (unsigned int v = 0; v < points.size(); ++v)
-          if (used[v])
-            {
-              const double r = points[v].distance(grasp_point);
-              if (r <= radius)
-                vertices.push_back(v);
-              if (r < closest)
-                closest = r, nearest = v;
-            }
+        vertices = vertices_within(mesh, grasp_point, radius);
         if (vertices.empty())
-          vertices.push_back(nearest);
+          vertices.push_back(GridTools::find_closest_vertex(mesh, grasp_point));
         grasp_due = true;
         d0 = d1 = Tensor<1, dim>();
       }

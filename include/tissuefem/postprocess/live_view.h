@@ -12,6 +12,12 @@
 #include <string>
 #include <vector>
 
+namespace tissuefem::tool
+{
+  template <int dim>
+  class MouseGrasp;
+}
+
 namespace tissuefem::postprocess
 {
   /**
@@ -110,6 +116,16 @@ namespace tissuefem::postprocess
     /// Root: applies the driving page's commands.
     void
     apply_commands(const double time);
+    /// The scene's mouse tool (null: none, mouse_unavailable says why).
+    tool::MouseGrasp<dim> *
+    mouse() const;
+    /// Root: simulated time paces from @p time and from now on.
+    void
+    restart_pacing(const double time);
+    /// Root: sends @p last_message to every page, closes the server and
+    /// prints its last log lines.
+    void
+    close_with(const std::string &last_message);
     /// Root: passes 'grasp X Y Z', 'drag DX DY DZ' or 'release' to the
     /// mouse tool; returns why not (empty: passed on).
     std::string

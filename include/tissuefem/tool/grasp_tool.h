@@ -19,6 +19,14 @@ namespace tissuefem::tool
 {
   using namespace dealii;
 
+  /// The vertices of @p mesh within @p radius of @p point (length units):
+  /// what a grasp holds.
+  template <int dim>
+  std::vector<unsigned int>
+  vertices_within(const Triangulation<dim> &mesh,
+                  const Point<dim>         &point,
+                  const double              radius);
+
   /// The 'Tool' subsection.
   struct ToolParameters
   {

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <deal.II/base/bounding_box.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
@@ -105,9 +106,10 @@ namespace tissuefem::tool
   private:
     double                    radius;
     const Triangulation<dim> &mesh;
-    /// Bounds of what a page may ask (set by connect()).
-    Point<dim> lower, upper;
-    double     diameter = 1;
+    /// Where a page may grasp: the body's box grown by a tenth of its
+    /// diameter (set by connect()).
+    BoundingBox<dim> bounds;
+    double           diameter = 1;
 
     // Process 0: what the pages asked since the last synchronize().
     std::optional<Point<dim>> asked_grasp;
