@@ -2,6 +2,7 @@
 #include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/contact/box.h>
 
+#include <array>
 #include <cmath>
 
 namespace tissuefem::contact
@@ -110,6 +111,40 @@ namespace tissuefem::contact
     Tensor<1, dim> n;
     n[nearest]    = sign[nearest];
     result.normal = rotation * n;
+    return result;
+  }
+
+
+  template <int dim>
+  Drawing<dim>
+  Box<dim>::drawing(const Point<dim> &, const double) const
+  {
+    Drawing<dim> result;
+    if constexpr (dim >= 2)
+      {
+        // Corner k has the sign of bit d of k in axis d.
+        for (unsigned int k = 0; k < (1u << dim); ++k)
+          {
+            Tensor<1, dim> q;
+            for (unsigned int d = 0; d < dim; ++d)
+              q[d] = (k >> d & 1) ? half[d] : -half[d];
+            result.vertices.push_back(centre + rotation * q);
+          }
+        if constexpr (dim == 2)
+          result.triangles = {0, 1, 3, 0, 3, 2};
+        else
+          // Two triangles per face, each face's corners in a cycle.
+          for (const auto &face : {std::array<unsigned int, 4>{{0, 2, 3, 1}},
+                                   {{4, 5, 7, 6}},
+                                   {{0, 1, 5, 4}},
+                                   {{2, 6, 7, 3}},
+                                   {{0, 4, 6, 2}},
+                                   {{1, 3, 7, 5}}})
+            result.triangles.insert(
+              result.triangles.end(),
+              {face[0], face[1], face[2], face[0], face[2], face[3]});
+        drawing::orient_outwards(result);
+      }
     return result;
   }
 

@@ -95,6 +95,20 @@ namespace tissuefem::contact
   }
 
 
+  template <int dim>
+  Drawing<dim>
+  Capsule<dim>::drawing(const Point<dim> &, const double) const
+  {
+    // A capsule of length 0 (a ball) has no axis of its own.
+    Tensor<1, dim> direction = axis;
+    if (length == 0)
+      direction[dim - 1] = 1;
+    return drawing::revolve(drawing::capsule_profile(length, radius),
+                            start,
+                            direction);
+  }
+
+
   template class Capsule<1>;
   template class Capsule<2>;
   template class Capsule<3>;

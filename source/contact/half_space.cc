@@ -47,6 +47,46 @@ namespace tissuefem::contact
   }
 
 
+  template <int dim>
+  Drawing<dim>
+  HalfSpace<dim>::drawing(const Point<dim> &centre, const double extent) const
+  {
+    Drawing<dim> result;
+    // The foot of the centre on the plane.
+    const Point<dim> foot = centre - ((centre - point) * normal) * normal;
+    const double     h    = extent / 2;
+    if constexpr (dim == 2)
+      {
+        // A band of depth extent / 10 behind a segment of the plane line.
+        const Tensor<1, 2> along({-normal[1], normal[0]});
+        const double       depth = extent / 10;
+        result.vertices          = {foot - h * along,
+                                    foot + h * along,
+                                    foot + h * along - depth * normal,
+                                    foot - h * along - depth * normal};
+        result.triangles         = {0, 1, 2, 0, 2, 3};
+        drawing::orient_outwards(result);
+      }
+    if constexpr (dim == 3)
+      {
+        // A square of the plane, seen from outside (the tissue's side):
+        // (a, b, normal) right-handed.
+        Tensor<1, 3> a;
+        a[std::abs(normal[0]) < 0.9 ? 0 : 1] = 1;
+        a -= (a * normal) * normal;
+        a /= a.norm();
+        const Tensor<1, 3> b = cross_product_3d(normal, a);
+        result.vertices      = {foot - h * a - h * b,
+                                foot + h * a - h * b,
+                                foot + h * a + h * b,
+                                foot - h * a + h * b};
+        result.triangles     = {0, 1, 2, 0, 2, 3};
+      }
+    (void)foot, (void)h;
+    return result;
+  }
+
+
   template class HalfSpace<1>;
   template class HalfSpace<2>;
   template class HalfSpace<3>;

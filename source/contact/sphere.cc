@@ -63,6 +63,16 @@ namespace tissuefem::contact
   }
 
 
+  template <int dim>
+  Drawing<dim>
+  Sphere<dim>::drawing(const Point<dim> &, const double) const
+  {
+    Tensor<1, dim> axis;
+    axis[dim - 1] = 1;
+    return drawing::revolve(drawing::capsule_profile(0, radius), centre, axis);
+  }
+
+
   template class Sphere<1>;
   template class Sphere<2>;
   template class Sphere<3>;

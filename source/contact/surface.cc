@@ -65,6 +65,21 @@ namespace tissuefem::contact
   }
 
 
+  template <int dim>
+  Drawing<dim>
+  Surface<dim>::drawing(const Point<dim> &, const double) const
+  {
+    Drawing<dim> result;
+    if constexpr (dim == 3)
+      {
+        result.vertices = surface->corners();
+        for (const auto &t : surface->faces())
+          result.triangles.insert(result.triangles.end(), t.begin(), t.end());
+      }
+    return result;
+  }
+
+
   template class Surface<1>;
   template class Surface<2>;
   template class Surface<3>;

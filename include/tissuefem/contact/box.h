@@ -27,6 +27,9 @@ namespace tissuefem::contact
     Gap<dim>
     gap(const Point<dim> &y) const override;
 
+    Drawing<dim>
+    drawing(const Point<dim> &centre, const double extent) const override;
+
   private:
     Point<dim>     centre;
     Tensor<1, dim> half;

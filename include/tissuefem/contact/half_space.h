@@ -22,6 +22,9 @@ namespace tissuefem::contact
     Gap<dim>
     gap(const Point<dim> &y) const override;
 
+    Drawing<dim>
+    drawing(const Point<dim> &centre, const double extent) const override;
+
   private:
     Point<dim>     point;
     Tensor<1, dim> normal;

@@ -56,6 +56,16 @@ namespace tissuefem::contact
       return shape->distance(pose.local(x));
     }
 
+    /// Triangles that draw its shape, in the shape's frame (the pose moves
+    /// them; Shape::drawing()); a shape without bounds is cut to a square of
+    /// side @p extent about the point nearest @p centre (the world's, at
+    /// time 0).
+    Drawing<dim>
+    drawing(const Point<dim> &centre, const double extent) const
+    {
+      return shape->drawing(pose(0.).local(centre), extent);
+    }
+
     /// Makes the shape follow @p motion (a translation against time, length
     /// units; a live device's) instead of its parameters' translation (its
     /// rotation stays the parameters').

@@ -5,6 +5,7 @@
 #include <deal.II/base/tensor.h>
 
 #include <tissuefem/base/registry.h>
+#include <tissuefem/contact/drawing.h>
 
 #include <memory>
 #include <string>
@@ -58,6 +59,13 @@ namespace tissuefem::contact
     {
       return gap(y).distance;
     }
+
+    /// Triangles that draw it (drawing.h), in its own frame, for the live
+    /// view. A shape without bounds (a half-space) is cut to a square (a
+    /// segment in 2D, with a depth) of side @p extent about the point of
+    /// its boundary nearest @p centre.
+    virtual Drawing<dim>
+    drawing(const Point<dim> &centre, const double extent) const = 0;
   };
 
   template <int dim>

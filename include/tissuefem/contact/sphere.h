@@ -25,6 +25,9 @@ namespace tissuefem::contact
     double
     distance(const Point<dim> &y) const override;
 
+    Drawing<dim>
+    drawing(const Point<dim> &centre, const double extent) const override;
+
   private:
     Point<dim> centre;
     double     radius;

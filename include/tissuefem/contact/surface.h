@@ -30,6 +30,9 @@ namespace tissuefem::contact
     Gap<dim>
     gap(const Point<dim> &y) const override;
 
+    Drawing<dim>
+    drawing(const Point<dim> &centre, const double extent) const override;
+
     /// The triangulated surface, for tests and statistics.
     const TriangleSurface &
     triangles() const

@@ -81,6 +81,19 @@ namespace tissuefem::contact
       return triangles.size();
     }
 
+    /// Its corners and its triangles (indices into corners(), turned
+    /// outwards).
+    const std::vector<Point<3>> &
+    corners() const
+    {
+      return vertices;
+    }
+    const std::vector<std::array<unsigned int, 3>> &
+    faces() const
+    {
+      return triangles;
+    }
+
     /// The volume enclosed (length^3 units, > 0).
     double
     volume() const;
