@@ -93,6 +93,7 @@ function setTopology(buffer) {
                                    new THREE.LineBasicMaterial({color: 0x8899aa}));
   outline.visible = $('outline').checked;
   scene3.add(outline);
+  setInstruments(d, 16 + 12 * n + 12 * m);
   view.topology = {n: n, triangles: m, reference: reference};
   // Frame the body.
   geometry.computeBoundingSphere();
@@ -109,6 +110,75 @@ function setTopology(buffer) {
   controls.update();
 }
 
+// The scene's obstacles and instruments (contact::Shape::drawing(), in
+// each shape's frame), placed every frame by their poses; the contact tool
+// the mouse moves (role 'mouse') is picked like the surface. Each tool
+// shows the force of the tissue on it as an arrow from its centre.
+const instruments = {meshes: [], arrows: [], centres: []};
+
+function setInstruments(d, at) {
+  for (const m of instruments.meshes) { scene3.remove(m); m.geometry.dispose(); }
+  for (const a of instruments.arrows) if (a) scene3.remove(a);
+  instruments.meshes = []; instruments.arrows = []; instruments.centres = [];
+  if (at + 4 > d.byteLength) return;
+  const count = d.getUint32(at, true), roles = (view.scene && view.scene.obstacles) || [];
+  at += 4;
+  for (let k = 0; k < count; ++k) {
+    const corners = d.getUint32(at, true), triangles = d.getUint32(at + 4, true);
+    at += 8;
+    const x = new Float32Array(d.buffer.slice(at, at + 12 * corners));
+    at += 12 * corners;
+    const index = new Uint32Array(d.buffer.slice(at, at + 12 * triangles));
+    at += 12 * triangles;
+    const role = roles[k] ? roles[k].role : 'obstacle', tool = role !== 'obstacle';
+    const geometry = new THREE.BufferGeometry();
+    geometry.setIndex(new THREE.BufferAttribute(index, 1));
+    geometry.setAttribute('position', new THREE.BufferAttribute(x, 3));
+    geometry.computeVertexNormals();
+    geometry.computeBoundingSphere();
+    // Obstacles see-through, so that a floor or a wall hides nothing;
+    // behind the tissue where they meet it (2D: the same plane).
+    const shape = new THREE.Mesh(geometry, new THREE.MeshPhongMaterial({
+      color: tool ? 0xc9ced6 : 0x6d7f99, side: THREE.DoubleSide, transparent: !tool,
+      opacity: tool ? 1 : 0.45, shininess: tool ? 80 : 10, polygonOffset: true,
+      polygonOffsetFactor: 1, polygonOffsetUnits: 1}));
+    shape.matrixAutoUpdate = false;
+    shape.userData = {role: role, name: roles[k] ? roles[k].name : '', offset: [0, 0, 0]};
+    scene3.add(shape);
+    instruments.meshes.push(shape);
+    instruments.centres.push(geometry.boundingSphere.center.clone());
+    instruments.arrows.push(tool ? forceArrow(0xffaa33) : null);
+  }
+}
+
+function showInstruments(f) {
+  const texts = [];
+  view.toolForce = null;
+  instruments.meshes.forEach((shape, k) => {
+    const b = f.obstacles.subarray(19 * k, 19 * k + 19);
+    if (b.length < 19) return;
+    // x = t + R y, R row by row.
+    shape.matrix.set(b[3], b[4], b[5], b[0], b[6], b[7], b[8], b[1], b[9], b[10], b[11], b[2],
+                     0, 0, 0, 1);
+    shape.matrixWorldNeedsUpdate = true;
+    const arrow = instruments.arrows[k];
+    if (!arrow) return;
+    shape.userData.offset = [b[16], b[17], b[18]];
+    view.toolOffset = shape.userData.offset;
+    const size = Math.hypot(b[12], b[13], b[14]);
+    view.toolForce = [b[12], b[13], b[14]];
+    texts.push(shape.userData.name + ': ' + size.toPrecision(4) + ' force units' +
+               (b[15] ? '' : ' (not touching)'));
+    if (size === 0 || !mesh) { arrow.visible = false; return; }
+    arrow.position.copy(instruments.centres[k]).applyMatrix4(shape.matrix);
+    arrow.setDirection(new THREE.Vector3(b[12], b[13], b[14]).normalize());
+    const length = 0.25 * mesh.geometry.boundingSphere.radius;
+    arrow.setLength(length, 0.25 * length, 0.12 * length);
+    arrow.visible = true;
+  });
+  view.toolText = texts.join('; ') || 'no contact tool';
+}
+
 function decodeFrame(buffer) {
   const d = new DataView(buffer);
   const n = d.getUint32(8, true);
@@ -116,6 +186,7 @@ function decodeFrame(buffer) {
   for (let k = 0; k < 10; ++k) numbers.push(d.getFloat64(header + 8 * k, true));
   const at = header + 80;
   const field = d.getUint32(12, true);
+  const mouseAt = at + 12 * n + (field > 0 ? 4 * n : 0);
   return {
     step: d.getUint32(4, true), n: n, field: field, flags: d.getUint32(16, true),
     time: numbers[0], dt: numbers[1], stepSeconds: numbers[2], stored: numbers[3],
@@ -123,7 +194,9 @@ function decodeFrame(buffer) {
     latencyMedian: numbers[8], latencyP99: numbers[9],
     u: new Float32Array(buffer, at, 3 * n),
     values: field > 0 ? new Float32Array(buffer, at + 12 * n, n) : null,
-    mouse: new Float32Array(buffer, at + 12 * n + (field > 0 ? 4 * n : 0), 10),
+    mouse: new Float32Array(buffer, mouseAt, 10),
+    obstacles: new Float32Array(buffer, mouseAt + 40,
+                                Math.max(0, Math.floor((buffer.byteLength - mouseAt - 40) / 4))),
   };
 }
 
@@ -157,6 +230,7 @@ function drawFrame(f) {
     if (view.history.length > 300) view.history.shift();
   }
   showForce(f);
+  showInstruments(f);
   // The numbers at most 5 times a second: text layout costs frames.
   const now = performance.now();
   if (now - (view.lastText || 0) < 200 && !(f.flags & 1)) return;
@@ -180,19 +254,25 @@ function drawFrame(f) {
   $('pause').disabled = !view.drives || (f.flags & 1);
   $('pace').value = (f.flags & 2) ? 'wall' : 'fast';
   $('n-force').textContent = view.forceText;
+  $('n-tool').textContent = view.toolText;
 }
 
 // The mouse: dragging the surface grasps the tissue at the picked point
-// (the run's 'mouse' tool), releasing lets go; elsewhere the mouse orbits.
-const arrow = new THREE.ArrowHelper(new THREE.Vector3(1, 0, 0), new THREE.Vector3(), 1, 0xff5533);
-arrow.visible = false;
-// The force on the tool points into the tissue: drawn over it.
-for (const part of [arrow.line, arrow.cone]) {
-  part.material.depthTest = false;
-  part.renderOrder = 10;
+// (the run's 'mouse' tool), releasing lets go; dragging the contact tool
+// moves it (it stays where it is let go); elsewhere the mouse orbits.
+function forceArrow(colour) {
+  const a = new THREE.ArrowHelper(new THREE.Vector3(1, 0, 0), new THREE.Vector3(), 1, colour);
+  a.visible = false;
+  // The force on a tool points into the tissue: drawn over it.
+  for (const part of [a.line, a.cone]) {
+    part.material.depthTest = false;
+    part.renderOrder = 10;
+  }
+  scene3.add(a);
+  return a;
 }
-scene3.add(arrow);
-const drag = {active: false, start: null, plane: new THREE.Plane(), sent: null};
+const arrow = forceArrow(0xff5533);
+const drag = {active: false, start: null, plane: new THREE.Plane(), sent: null, tool: null};
 view.force = [0, 0, 0];
 
 function showForce(f) {
@@ -232,12 +312,22 @@ const raycaster = new THREE.Raycaster();
 
 // Capture phase on the container: before the orbit controls see it.
 container.addEventListener('mousedown', (event) => {
-  if (event.button !== 0 || !mesh || !view.drives || !view.mouseGrasps) return;
+  if (event.button !== 0 || !mesh || !view.drives) return;
+  const movable = instruments.meshes.filter((m) => m.userData.role === 'mouse');
+  const targets = (view.mouseGrasps ? [mesh] : []).concat(movable);
+  if (!targets.length) return;
   raycaster.setFromCamera(pointer(event), camera);
-  const hit = raycaster.intersectObject(mesh)[0];
+  const hit = raycaster.intersectObjects(targets)[0];
   if (!hit) return;
   event.stopPropagation();
   event.preventDefault();
+  drag.active = true;
+  drag.start = hit.point.clone();
+  drag.plane.setFromNormalAndCoplanarPoint(camera.getWorldDirection(new THREE.Vector3()), hit.point);
+  drag.sent = null;
+  // The tool: offsets from where it is (its own motion plus the last).
+  drag.tool = hit.object === mesh ? null : hit.object.userData.offset.slice();
+  if (drag.tool) return;
   // The picked point in reference coordinates: the same barycentric
   // weights in the reference triangle.
   const position = mesh.geometry.attributes.position.array, x = view.topology.reference;
@@ -246,10 +336,6 @@ container.addEventListener('mousedown', (event) => {
                                         corner(hit.face.c), new THREE.Vector3());
   const X = [0, 1, 2].map((d) => w.x * x[3 * hit.face.a + d] + w.y * x[3 * hit.face.b + d] +
                                  w.z * x[3 * hit.face.c + d]);
-  drag.active = true;
-  drag.start = hit.point.clone();
-  drag.plane.setFromNormalAndCoplanarPoint(camera.getWorldDirection(new THREE.Vector3()), hit.point);
-  drag.sent = null;
   send('grasp ' + X.join(' '));
 }, true);
 
@@ -262,8 +348,9 @@ window.addEventListener('mousemove', (event) => {
 
 window.addEventListener('mouseup', () => {
   if (!drag.active) return;
+  sendDrag();
   drag.active = false;
-  send('release');
+  if (!drag.tool) send('release');
 });
 
 // For scripts (tests, pictures): how much of the canvas is drawn (the share
@@ -302,10 +389,32 @@ view.surfacePoint = () => {
   return best && {x: best.x, y: best.y};
 };
 
+// For scripts (tests, pictures): the page coordinates of the centre of the
+// instrument the mouse moves, and the colour drawn at page coordinates.
+view.instrumentPoint = () => {
+  const k = instruments.meshes.findIndex((m) => m.userData.role === 'mouse');
+  if (k < 0) return null;
+  const p = instruments.centres[k].clone().applyMatrix4(instruments.meshes[k].matrix).project(camera);
+  const r = renderer.domElement.getBoundingClientRect();
+  return {x: r.left + (p.x + 1) / 2 * r.width, y: r.top + (1 - p.y) / 2 * r.height};
+};
+view.colourAt = (x, y) => {
+  renderer.render(scene3, camera);
+  const source = renderer.domElement, r = source.getBoundingClientRect();
+  const c = document.createElement('canvas');
+  c.width = source.width; c.height = source.height;
+  c.getContext('2d').drawImage(source, 0, 0);
+  const d = c.getContext('2d').getImageData(Math.round((x - r.left) * source.width / r.width),
+                                            Math.round((y - r.top) * source.height / r.height), 1, 1).data;
+  return [d[0], d[1], d[2]];
+};
+
 // At most one drag message per animation frame.
 function sendDrag() {
   if (drag.active && drag.sent) {
-    send('drag ' + drag.sent.x + ' ' + drag.sent.y + ' ' + drag.sent.z);
+    const t = drag.tool, s = drag.sent;
+    send(t ? 'tool ' + (t[0] + s.x) + ' ' + (t[1] + s.y) + ' ' + (t[2] + s.z)
+           : 'drag ' + s.x + ' ' + s.y + ' ' + s.z);
     drag.sent = null;
   }
 }
@@ -399,9 +508,16 @@ socket.onmessage = (event) => {
     $('description').textContent = message.file + ': ' + message.description + ', integrator \'' +
       message.integrator + '\', material ' + message.materials + ', time step ' +
       message.time_step + ', output in ' + message.directory + '/';
+    const movable = (message.obstacles || []).filter((o) => o.role === 'mouse');
     if (message.mouse !== 'grasp')
-      document.querySelector('.hint').textContent = 'The mouse turns the view (' + message.mouse +
+      document.querySelector('.hint').textContent = (movable.length
+        ? 'Drag the instrument (light grey) to move it; elsewhere the mouse turns the view (the tissue cannot be grasped: '
+        : 'The mouse turns the view (') + message.mouse +
         '): drag to turn, right-drag to pan, wheel to zoom.';
+    else if (movable.length)
+      document.querySelector('.hint').textContent = 'Drag the surface to pull the tissue, the ' +
+        'instrument (light grey) to move it; drag elsewhere to turn the view, right-drag to pan, ' +
+        'wheel to zoom.';
     view.mouseGrasps = message.mouse === 'grasp';
     const select = $('field');
     select.innerHTML = '';

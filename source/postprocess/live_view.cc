@@ -1,10 +1,14 @@
 #include <deal.II/base/mpi.h>
+#include <deal.II/grid/grid_tools.h>
 
 #include <tissuefem/base/interruption.h>
 #include <tissuefem/base/parallel.h>
+#include <tissuefem/output/obstacle_view.h>
 #include <tissuefem/output/output_files.h>
+#include <tissuefem/output/wire_format.h>
 #include <tissuefem/postprocess/live_view.h>
 #include <tissuefem/solid/quantities.h>
+#include <tissuefem/tool/contact_tool.h>
 #include <tissuefem/tool/mouse_grasp.h>
 
 #include <cmath>
@@ -17,6 +21,10 @@
 
 namespace tissuefem::postprocess
 {
+  using output::json_number;
+  using output::put;
+  using output::put_all;
+
   namespace
   {
     using Clock = std::chrono::steady_clock;
@@ -25,35 +33,6 @@ namespace tissuefem::postprocess
     seconds_since(const Clock::time_point start)
     {
       return std::chrono::duration<double>(Clock::now() - start).count();
-    }
-
-    /// Appends @p value's bytes (the machine's order: little-endian on the
-    /// machines this runs on, which the page's DataView reads).
-    template <typename T>
-    void
-    put(std::string &bytes, const T value)
-    {
-      bytes.append(reinterpret_cast<const char *>(&value), sizeof(T));
-    }
-
-    template <typename T>
-    void
-    put_all(std::string &bytes, const std::vector<T> &values)
-    {
-      bytes.append(reinterpret_cast<const char *>(values.data()),
-                   values.size() * sizeof(T));
-    }
-
-    /// A number for JSON (no inf or nan there).
-    std::string
-    json_number(const double x)
-    {
-      if (!std::isfinite(x))
-        return "null";
-      std::ostringstream s;
-      s.precision(10);
-      s << x;
-      return s.str();
     }
   } // namespace
 
@@ -172,6 +151,12 @@ namespace tissuefem::postprocess
     field_names = {"displacement", "J", "von Mises"};
     if (c.scene.obstacle_contact)
       field_names.push_back("contact pressure");
+    const auto tool = c.scene.tools.find("contact");
+    obstacles       = std::make_unique<output::ObstacleView<dim>>(
+      c.scene.obstacle_contact.get(),
+      tool == c.scene.tools.end()
+              ? nullptr
+              : dynamic_cast<const tool::ContactTool<dim> *>(tool->second.get()));
     // A new mesh needs a new surface; the next frame sends it.
     mesh_changed = c.scene.triangulation.signals.any_change.connect(
       [this]() { topology_sent = false; });
@@ -236,7 +221,7 @@ namespace tissuefem::postprocess
            + ",\"frame_rate\":" + json_number(frame_rate) + ",\"mouse\":"
            + (mouse_unavailable.empty() ? std::string("\"grasp\"")
                                         : output::json_quote(mouse_unavailable))
-           + "}";
+           + ",\"obstacles\":" + obstacles->json() + "}";
   }
 
 
@@ -304,7 +289,8 @@ namespace tissuefem::postprocess
           }
         else if (verb == "pace" && (argument == "wall" || argument == "fast"))
           pace_wall = argument == "wall";
-        else if (verb == "grasp" || verb == "drag" || verb == "release")
+        else if (verb == "grasp" || verb == "drag" || verb == "release"
+                 || verb == "tool")
           refusal = mouse_command(verb, argument);
         else if (verb == "field")
           {
@@ -353,6 +339,23 @@ namespace tissuefem::postprocess
   LiveView<dim>::mouse_command(const std::string &verb,
                                const std::string &argument)
   {
+    // Three numbers (the page's z is 0 in 2D), but for 'release'.
+    std::istringstream numbers(argument);
+    double             x[3];
+    if (verb != "release" && !(numbers >> x[0] >> x[1] >> x[2]))
+      return verb + " needs three numbers";
+    if (verb == "tool")
+      {
+        const auto &tools = this->context->scene.tools;
+        const auto  found = tools.find("contact");
+        if (found == tools.end())
+          return "the scene has no contact tool";
+        Tensor<1, dim> offset;
+        for (unsigned int d = 0; d < dim; ++d)
+          offset[d] = x[d];
+        return static_cast<tool::ContactTool<dim> &>(*found->second)
+          .request_move(offset);
+      }
     tool::MouseGrasp<dim> *mouse = this->mouse();
     if (!mouse)
       return "the mouse cannot grasp in this run: " + mouse_unavailable;
@@ -361,11 +364,6 @@ namespace tissuefem::postprocess
         mouse->request_release();
         return {};
       }
-    // Three numbers (the page's z is 0 in 2D).
-    std::istringstream numbers(argument);
-    double             x[3];
-    if (!(numbers >> x[0] >> x[1] >> x[2]))
-      return verb + " needs three numbers";
     if (verb == "grasp")
       {
         Point<dim> point;
@@ -395,6 +393,14 @@ namespace tissuefem::postprocess
     put<std::uint32_t>(*bytes, dim);
     put_all(*bytes, surface->positions);
     put_all(*bytes, surface->triangles);
+    // The obstacles' drawings; unbounded ones cut to three diameters.
+    const auto box
+      = GridTools::compute_bounding_box(this->context->scene.triangulation);
+    obstacles->append_drawings(*bytes,
+                               box.center(),
+                               3
+                                 * box.get_boundary_points().first.distance(
+                                   box.get_boundary_points().second));
     server->set_topology(std::move(bytes));
   }
 
@@ -491,6 +497,7 @@ namespace tissuefem::postprocess
           }
       }
     put_all(*bytes, mouse_block);
+    obstacles->append_poses(*bytes, step.contact, step.state.time);
     server->set_frame(std::move(bytes));
     last_frame = Clock::now();
     ++frames;

@@ -1,8 +1,10 @@
 #include <deal.II/base/utilities.h>
 
 #include <tissuefem/base/input_error.h>
+#include <tissuefem/base/parallel.h>
 #include <tissuefem/tool/contact_tool.h>
 
+#include <cmath>
 #include <iomanip>
 #include <sstream>
 
@@ -38,15 +40,24 @@ namespace tissuefem::tool
     prm.leave_subsection();
     if (obstacle.empty())
       return nullptr;
-    return std::make_unique<ContactTool<dim>>(obstacle, haptic);
+    // A live device moves the tool by itself; otherwise a page may.
+    prm.enter_subsection("Output");
+    prm.enter_subsection("Live view");
+    const bool view = prm.get_integer("Port") >= 0;
+    prm.leave_subsection();
+    prm.leave_subsection();
+    return std::make_unique<ContactTool<dim>>(
+      obstacle, haptic, view && dim >= 2 && haptic.live_port < 0);
   }
 
 
   template <int dim>
   ContactTool<dim>::ContactTool(const std::string      &obstacle,
-                                const HapticParameters &parameters)
+                                const HapticParameters &parameters,
+                                const bool              mouse)
       : obstacle_name(obstacle)
       , haptic(parameters, [this](const double t) { return displacement(t); })
+      , mouse(mouse)
   {
   }
 
@@ -85,6 +96,32 @@ namespace tissuefem::tool
           return positions->position(t) - positions->first();
         });
       }
+    else if (mouse)
+      {
+        // Its own motion, and the mouse's offset on top; displacements
+        // count from where its own motion starts.
+        const contact::Obstacle<dim> own = obstacles[index];
+        start                            = own.pose(0.).translation;
+        obstacles[index].follow([own, this](const double t) {
+          return own.pose(t).translation + motion(t);
+        });
+      }
+  }
+
+
+  template <int dim>
+  std::string
+  ContactTool<dim>::request_move(const Tensor<1, dim> &offset)
+  {
+    if (!mouse)
+      return "the contact tool follows its live device";
+    for (unsigned int d = 0; d < dim; ++d)
+      if (!std::isfinite(offset[d]))
+        return "tool offset is not finite";
+    if (offset.norm() > diameter)
+      return "tool offset farther than the body's diameter";
+    asked_offset = offset;
+    return {};
   }
 
 
@@ -93,7 +130,8 @@ namespace tissuefem::tool
   ContactTool<dim>::displacement(const double time) const
   {
     const auto &obstacle = contact->obstacles()[index];
-    return obstacle.pose(time).translation - obstacle.pose(0.).translation;
+    return obstacle.pose(time).translation
+           - (mouse ? start : obstacle.pose(0.).translation);
   }
 
 
@@ -103,6 +141,7 @@ namespace tissuefem::tool
                             const double       body_diameter)
   {
     haptic.connect(directory, body_diameter);
+    diameter = body_diameter;
   }
 
 
@@ -110,6 +149,13 @@ namespace tissuefem::tool
   bool
   ContactTool<dim>::synchronize(const double time)
   {
+    if (mouse)
+      {
+        const Tensor<1, dim> target
+          = Utilities::MPI::broadcast(parallel_tools::communicator(),
+                                      asked_offset);
+        motion.advance(time, target, 0.1 * diameter);
+      }
     return haptic.synchronize(time, table);
   }
 

@@ -162,7 +162,7 @@ namespace tissuefem::tool
         if (vertices.empty())
           vertices.push_back(GridTools::find_closest_vertex(mesh, grasp_point));
         grasp_due = true;
-        d0 = d1 = Tensor<1, dim>();
+        motion.reset();
       }
     // A release stays due until act() lets go (a click may grasp and
     // release within one step).
@@ -171,26 +171,8 @@ namespace tissuefem::tool
     for (unsigned int d = 0; d < dim; ++d)
       target[d] = shared[2 + dim + d];
     // Towards the target by at most a tenth of the diameter this step.
-    t0                   = t1;
-    t1                   = time;
-    d0                   = d1;
-    Tensor<1, dim> delta = target - d0;
-    if (delta.norm() > 0.1 * diameter)
-      delta *= 0.1 * diameter / delta.norm();
-    d1 = d0 + delta;
+    motion.advance(time, target, 0.1 * diameter);
     return true;
-  }
-
-
-  template <int dim>
-  Tensor<1, dim>
-  MouseGrasp<dim>::displacement(const double time) const
-  {
-    if (time <= t0 || t1 <= t0)
-      return time < t1 ? d0 : d1;
-    if (time >= t1)
-      return d1;
-    return d0 + (time - t0) / (t1 - t0) * (d1 - d0);
   }
 
 
@@ -211,7 +193,8 @@ namespace tissuefem::tool
         solid.release();
         held        = false;
         release_due = false;
-        d0 = d1 = target = Tensor<1, dim>();
+        target      = Tensor<1, dim>();
+        motion.reset();
         return;
       }
     if (grasp_due)

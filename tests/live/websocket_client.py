@@ -163,22 +163,43 @@ def decode(opcode, payload):
         n, m, dim = struct.unpack_from("<III", payload, 4)
         x = struct.unpack_from("<%df" % (3 * n), payload, 16)
         tri = struct.unpack_from("<%dI" % (3 * m), payload, 16 + 12 * n)
-        return "topology", {"n": n, "m": m, "dim": dim, "x": x, "tri": tri}
+        # The obstacles' drawings: corners (x y z) and triangles of each.
+        at, obstacles = 16 + 12 * n + 12 * m, []
+        (count,) = struct.unpack_from("<I", payload, at)
+        at += 4
+        for _ in range(count):
+            corners, triangles = struct.unpack_from("<II", payload, at)
+            at += 8
+            xs = struct.unpack_from("<%df" % (3 * corners), payload, at)
+            at += 12 * corners
+            ts = struct.unpack_from("<%dI" % (3 * triangles), payload, at)
+            at += 12 * triangles
+            obstacles.append({"x": xs, "tri": ts})
+        return "topology", {"n": n, "m": m, "dim": dim, "x": x, "tri": tri,
+                            "obstacles": obstacles}
     if magic == b"TFF1":
         step, n, field, flags = struct.unpack_from("<IIII", payload, 4)
         numbers = struct.unpack_from("<10d", payload, 20)
         u = struct.unpack_from("<%df" % (3 * n), payload, 100)
         values = (struct.unpack_from("<%df" % n, payload, 100 + 12 * n)
                   if field > 0 else None)
-        mouse = struct.unpack_from("<10f", payload,
-                                   100 + 12 * n + (4 * n if field > 0 else 0))
+        at = 100 + 12 * n + (4 * n if field > 0 else 0)
+        mouse = struct.unpack_from("<10f", payload, at)
+        # Each obstacle: translation, rotation (row by row), the force of
+        # the tissue on it, touching, the mouse's offset (19 floats).
+        obstacles = []
+        for k in range((len(payload) - at - 40) // 76):
+            b = struct.unpack_from("<19f", payload, at + 40 + 76 * k)
+            obstacles.append({"translation": b[0:3], "rotation": b[3:12],
+                              "force": b[12:15], "touching": b[15] != 0,
+                              "offset": b[16:19]})
         names = ["time", "dt", "step_seconds", "stored", "kinetic", "rate",
                  "frame_ms", "budget", "latency_median", "latency_p99"]
         frame = dict(zip(names, numbers))
         frame.update(step=step, n=n, field=field, flags=flags, u=u,
                      values=values, bytes=len(payload),
                      holding=mouse[0] != 0, grasp_point=mouse[1:4],
-                     drag=mouse[4:7], force=mouse[7:10])
+                     drag=mouse[4:7], force=mouse[7:10], obstacles=obstacles)
         return "frame", frame
     return "unknown", payload
 

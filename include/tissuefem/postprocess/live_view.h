@@ -1,6 +1,7 @@
 #pragma once
 
 #include <tissuefem/output/boundary_surface.h>
+#include <tissuefem/output/obstacle_view.h>
 #include <tissuefem/output/view_server.h>
 #include <tissuefem/postprocess/interface.h>
 
@@ -38,7 +39,8 @@ namespace tissuefem::postprocess
    * What pages send, and what the run does with it (text commands, from
    * the driving page): 'pause', 'play', 'step' (one step, then pause),
    * 'pace wall' / 'pace fast', 'field NAME', and for the mouse tool
-   * (tool/mouse_grasp.h) 'grasp X Y Z', 'drag DX DY DZ', 'release'. Pausing and
+   * (tool/mouse_grasp.h) 'grasp X Y Z', 'drag DX DY DZ', 'release', and for
+   * the contact tool (tool/contact_tool.h) 'tool DX DY DZ'. Pausing and
    * pacing happen in wait(), after a step's outputs and timed apart from
    * them, on process 0; the others wait at the next collective operation. A
    * page closing while the run is paused lets it go on.
@@ -101,6 +103,7 @@ namespace tissuefem::postprocess
     output::ViewServer::Settings                  settings;
     std::unique_ptr<output::ViewServer>           server;
     std::unique_ptr<output::BoundarySurface<dim>> surface;
+    std::unique_ptr<output::ObstacleView<dim>>    obstacles;
     boost::signals2::scoped_connection            mesh_changed;
     bool                                          topology_sent = false;
     unsigned int                                  frames        = 0;
@@ -127,7 +130,8 @@ namespace tissuefem::postprocess
     void
     close_with(const std::string &last_message);
     /// Root: passes 'grasp X Y Z', 'drag DX DY DZ' or 'release' to the
-    /// mouse tool; returns why not (empty: passed on).
+    /// mouse tool, 'tool DX DY DZ' (the offset from its own motion) to the
+    /// contact tool; returns why not (empty: passed on).
     std::string
     mouse_command(const std::string &verb, const std::string &argument);
     /// Collective: builds and sends the topology (root sends).

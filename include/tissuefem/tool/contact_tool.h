@@ -7,6 +7,7 @@
 #include <tissuefem/contact/penalty_contact.h>
 #include <tissuefem/tool/haptic_renderer.h>
 #include <tissuefem/tool/interface.h>
+#include <tissuefem/tool/mouse_motion.h>
 
 #include <memory>
 #include <string>
@@ -29,6 +30,12 @@ namespace tissuefem::tool
    * feels is the secant stiffness observed at the tool, the tissue's and
    * the contact's in series, not the penalty's alone. It holds no vertex,
    * so the mesh may be refined while it works.
+   *
+   * In a run with a live view and without a live device, the page's mouse
+   * moves it too: the offset the page asks (request_move(), on process 0;
+   * at most the body's diameter) is added to its obstacle's own motion,
+   * reached by at most a tenth of the diameter per step (mouse_motion.h),
+   * and kept when the page lets go.
    */
   template <int dim>
   class ContactTool : public Interface<dim>
@@ -42,7 +49,11 @@ namespace tissuefem::tool
     static std::unique_ptr<Interface<dim>>
     create(ParameterHandler &prm, const Triangulation<dim> &mesh);
 
-    ContactTool(const std::string &obstacle, const HapticParameters &haptic);
+    /// The tool pushing with the obstacle named @p obstacle; @p mouse:
+    /// whether a live view's mouse may move it.
+    ContactTool(const std::string      &obstacle,
+                const HapticParameters &haptic,
+                const bool              mouse = false);
 
     /// Finds its obstacle in @p contact (refuses a name that is not
     /// there, or a live tool whose obstacle has a motion of its own) and,
@@ -88,6 +99,33 @@ namespace tissuefem::tool
     std::string
     summary() const override;
 
+    /// Its obstacle's index among the scene's obstacles.
+    unsigned int
+    obstacle() const
+    {
+      return index;
+    }
+
+    /// Whether the live view's mouse moves it.
+    bool
+    follows_mouse() const
+    {
+      return mouse;
+    }
+
+    /// Process 0: the page asks the tool to be moved by @p offset from its
+    /// own motion (length units). Returns why not (empty: taken, from the
+    /// next step on).
+    std::string
+    request_move(const Tensor<1, dim> &offset);
+
+    /// The mouse's offset at @p time (length units).
+    Tensor<1, dim>
+    mouse_offset(const double time) const
+    {
+      return motion(time);
+    }
+
   private:
     /// The tool's displacement d(t) from where it started (length units).
     Tensor<1, dim>
@@ -100,5 +138,13 @@ namespace tissuefem::tool
     TrajectoryTable<dim> table;
     HapticRenderer<dim>  haptic;
     unsigned int         steps_touching = 0, steps = 0;
+    /// The live view's mouse: whether it may move the tool, the offset it
+    /// asked (process 0) and the offset's motion; the body's diameter.
+    bool             mouse = false;
+    Tensor<1, dim>   asked_offset;
+    MouseMotion<dim> motion;
+    double           diameter = 1;
+    /// Where its own motion starts (with the mouse: pose(0) moves with it).
+    Tensor<1, dim> start;
   };
 } // namespace tissuefem::tool

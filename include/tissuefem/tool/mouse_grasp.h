@@ -6,6 +6,7 @@
 #include <deal.II/base/tensor.h>
 
 #include <tissuefem/tool/interface.h>
+#include <tissuefem/tool/mouse_motion.h>
 
 #include <memory>
 #include <optional>
@@ -95,7 +96,10 @@ namespace tissuefem::tool
       return grasp_point;
     }
     Tensor<1, dim>
-    displacement(const double time) const;
+    displacement(const double time) const
+    {
+      return motion(time);
+    }
     /// The force the tissue exerts on the tool after the last record().
     const Tensor<1, dim> &
     force() const
@@ -121,11 +125,11 @@ namespace tissuefem::tool
     bool                      held = false;
     Point<dim>                grasp_point;
     std::vector<unsigned int> vertices;
-    /// The motion over the step [t0, t1]: from d0 to d1, linearly.
-    double         t0 = 0, t1 = 0;
-    Tensor<1, dim> d0, d1, target;
-    Tensor<1, dim> last_force;
-    unsigned int   grasps        = 0;
-    double         largest_force = 0;
+    /// The held vertices' motion, and where the page asks it to go.
+    MouseMotion<dim> motion;
+    Tensor<1, dim>   target;
+    Tensor<1, dim>   last_force;
+    unsigned int     grasps        = 0;
+    double           largest_force = 0;
   };
 } // namespace tissuefem::tool

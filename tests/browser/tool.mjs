@@ -1,0 +1,122 @@
+// The contact tool moved by the mouse in a real browser (ctest
+// browser/tool):
+//
+//   node tool.mjs TISSUEFEM SCENE WORKDIR
+//
+// Starts tissuefem on SCENE (parameters/muscle_palpation.prm: Jeffrey's
+// muscle and a spherical probe, the contact tool) with the probe's own
+// motion set to 0, so that only the page moves it, and the live view on
+// and paused. Drives Debian's Chromium headless (software WebGL) through
+// puppeteer-core and checks that
+// - the probe is drawn: the colour at its centre on the page is the
+//   instrument's grey, not the background;
+// - dragging the probe towards the muscle moves it there: the page shows
+//   a non-zero force of the tissue on it (force units), the same force is
+//   a row of the run's tool_force-contact.csv, and that row has the probe
+//   displaced towards the muscle (x < 0);
+// - the probe stays where the mouse let it go: its position in the last
+//   200 rows of tool_force-contact.csv is one, with x < 0;
+// - after the page closes, the run ends by itself with exit 0.
+// Screenshots go to WORKDIR (test artifacts).
+import fs from 'node:fs';
+import path from 'node:path';
+import {spawn} from 'node:child_process';
+import puppeteer from 'puppeteer-core';
+
+const [exe, scene, work] = process.argv.slice(2);
+fs.rmSync(work, {recursive: true, force: true});
+fs.mkdirSync(work, {recursive: true});
+const failures = [];
+const check = (ok, what) => { if (!ok) { failures.push(what); console.log('FAILED:', what); } };
+const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
+
+const log = fs.openSync(path.join(work, 'run.log'), 'w');
+const run = spawn(exe, [scene,
+  '--set', 'Contact/Obstacle 1/Motion=0; 0; 0', '--set', 'Output/Directory=results',
+  '--set', 'Output/VTU/Interval=0',
+  '--set', 'Output/Live view/Port=0', '--set', 'Output/Live view/Start paused=true',
+  '--set', 'Output/Live view/Wait for page=60', '--set', 'Time integration/End time=5'],
+  {cwd: work, stdio: ['ignore', log, log]});
+let exitCode = null;
+const exited = new Promise((resolve) => run.on('exit', (code) => { exitCode = code; resolve(code); }));
+
+const addressFile = path.join(work, 'results', 'live_view');
+for (let k = 0; k < 600 && !fs.existsSync(addressFile) && exitCode === null; ++k) await sleep(50);
+if (!fs.existsSync(addressFile)) {
+  console.log(fs.readFileSync(path.join(work, 'run.log'), 'utf8').slice(-3000));
+  process.exit(1);
+}
+const url = fs.readFileSync(addressFile, 'utf8').trim();
+
+const browser = await puppeteer.launch({
+  executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
+  headless: true,
+  args: ['--headless=new', '--no-sandbox', '--use-angle=swiftshader',
+         '--enable-unsafe-swiftshader', '--window-size=1200,800'],
+});
+try {
+  const page = await browser.newPage();
+  await page.setViewport({width: 1200, height: 800});
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(String(e)));
+  await page.goto(url);
+  await page.waitForFunction(() => window.tissuefem.topology && window.tissuefem.lastStep >= 0,
+                             {timeout: 20000});
+  await sleep(300);
+  const until = (test, arg) => page.waitForFunction(test, {timeout: 30000}, arg).then(() => true, () => false);
+
+  const probe = await page.evaluate(() => window.tissuefem.instrumentPoint());
+  check(probe !== null, 'the page knows the probe as the instrument the mouse moves');
+  const rgb = await page.evaluate((p) => window.tissuefem.colourAt(p.x, p.y), probe);
+  console.log('colour at the probe: %s', rgb.join(' '));
+  const grey = Math.max(...rgb) - Math.min(...rgb) < 40 && Math.min(...rgb) > 60;
+  check(grey, 'the probe is drawn (grey at its centre, not the background): ' + rgb.join(' '));
+  await page.screenshot({path: path.join(work, '1-loaded.png')});
+
+  await page.click('#play');
+  check(await until(() => window.tissuefem.lastStep > 0), 'play advances the steps');
+  // Towards the muscle: the probe sits at x = 0.0255 beside it, screen
+  // right is about +x.
+  await page.mouse.move(probe.x, probe.y);
+  await page.mouse.down();
+  for (let k = 1; k <= 12; ++k) { await page.mouse.move(probe.x - 6 * k, probe.y); await sleep(60); }
+  const touched = await until(() => window.tissuefem.toolForce &&
+                              Math.hypot(...window.tissuefem.toolForce) > 0);
+  await sleep(500);
+  const shown = await page.evaluate(() => ({force: window.tissuefem.toolForce,
+                                             text: document.getElementById('n-tool').textContent}));
+  await page.screenshot({path: path.join(work, '2-pressing.png')});
+  console.log('force on the probe shown: %s (%s)', shown.force.join(' '), shown.text);
+  check(touched && /force units/.test(shown.text), 'the page shows the force of the tissue on the probe');
+  await page.mouse.up();
+  const step = await page.evaluate(() => window.tissuefem.lastStep);
+  check(await until((s) => window.tissuefem.lastStep > s + 5, step), 'the run goes on');
+  check(errors.length === 0, 'no error in the page: ' + errors.join('; '));
+  await page.select('#pace', 'fast');
+  await sleep(300);
+  await page.close();
+
+  await Promise.race([exited, new Promise((r) => setTimeout(r, 120000).unref())]);
+  check(exitCode === 0, 'the run ends by itself with exit 0 after the page closed (' + exitCode + ')');
+  const rows = fs.readFileSync(path.join(work, 'results', 'tool_force-contact.csv'), 'utf8')
+    .trim().split('\n').slice(1).map((l) => l.split(',').map(Number));
+  const size = Math.hypot(...shown.force);
+  const same = rows.filter((r) => [0, 1, 2].every((d) =>
+    Math.abs(r[5 + d] - shown.force[d]) <= 1e-5 * Math.max(size, 1e-12)));
+  check(same.length > 0, 'the force the page showed is a row of tool_force-contact.csv');
+  check(same.every((r) => r[2] < 0), 'that row has the probe moved towards the muscle (x < 0)');
+  // The rest of the run (at least 200 steps after the page let go): one
+  // position.
+  const last = rows.slice(-200), p = last[0];
+  console.log('probe at the end: %s', p.slice(2, 5).join(' '));
+  check(p[2] < 0 && last.every((r) => [2, 3, 4].every((d) => r[d] === p[d])),
+        'the probe stays where the mouse let it go');
+} finally {
+  await browser.close();
+  if (exitCode === null) run.kill();
+}
+if (failures.length) {
+  console.log(fs.readFileSync(path.join(work, 'run.log'), 'utf8').slice(-3000));
+  process.exit(1);
+}
+console.log('browser tool: all checks passed');
