@@ -95,8 +95,10 @@ function setTopology(buffer) {
   scene3.add(outline);
   setInstruments(d, 16 + 12 * n + 12 * m);
   view.topology = {n: n, triangles: m, reference: reference};
-  // Frame the body.
+  // Frame the body, once (a new mesh or a reset keeps the user's view).
   geometry.computeBoundingSphere();
+  if (view.framed) return;
+  view.framed = true;
   const s = geometry.boundingSphere;
   controls.target.copy(s.center);
   camera.near = s.radius / 100;
@@ -487,10 +489,23 @@ setInterval(() => {
   chart('chart-latency', [5, 6], ['#7c7', '#f66'], last ? 2 : 0);
 }, 1000);
 
-const socket = new WebSocket(`ws://${location.host}/ws`);
-socket.binaryType = 'arraybuffer';
-function send(text) { if (socket.readyState === 1) socket.send(text); }
-socket.onmessage = (event) => {
+let socket = null;
+function send(text) { if (socket && socket.readyState === 1) socket.send(text); }
+function connect() {
+  socket = new WebSocket(`ws://${location.host}/ws`);
+  socket.binaryType = 'arraybuffer';
+  socket.onmessage = receive;
+  socket.onclose = () => {
+    // After a reset the run starts again on the same address: try until
+    // it answers (a minute at most).
+    if (view.resetting && performance.now() - view.resetting < 60000) {
+      setTimeout(connect, 250);
+      return;
+    }
+    if (!view.ended) $('connection').textContent = 'disconnected (the run ended or stopped)';
+  };
+}
+function receive(event) {
   if (typeof event.data !== 'string') {
     const magic = String.fromCharCode(...new Uint8Array(event.data, 0, 4));
     if (magic === 'TFT1') setTopology(event.data);
@@ -503,6 +518,11 @@ socket.onmessage = (event) => {
   }
   const message = JSON.parse(event.data);
   if (message.type === 'scene') {
+    // A new run (the first, or one that starts again after a reset).
+    view.resetting = 0;
+    view.history = [];
+    view.lastStep = -1;
+    $('status').textContent = '';
     view.scene = message;
     document.title = message.file + ' - TissueFEM live view';
     $('description').textContent = message.file + ': ' + message.description + ', integrator \'' +
@@ -528,21 +548,25 @@ socket.onmessage = (event) => {
     $('connection').textContent = message.drives ? 'connected: this page drives the run'
                                                  : 'connected: watching (another page drives)';
     $('connection').className = message.drives ? '' : 'watching';
-    for (const id of ['play', 'pause', 'step', 'pace', 'field']) $(id).disabled = !message.drives;
+    for (const id of ['play', 'pause', 'step', 'reset', 'pace', 'field']) $(id).disabled = !message.drives;
   } else if (message.type === 'error') {
     $('status').textContent = (message.fatal ? 'the run stopped: ' : '') + message.message;
   } else if (message.type === 'end') {
     view.ended = true;
     $('connection').textContent = 'the run ended at t = ' + message.time;
+  } else if (message.type === 'reset') {
+    view.resetting = performance.now();
+    ++view.resets;
+    $('connection').textContent = 'reset: the run starts again from t = 0...';
   }
-};
-socket.onclose = () => {
-  if (!view.ended) $('connection').textContent = 'disconnected (the run ended or stopped)';
-};
+}
+view.resets = 0;
+connect();
 
 $('play').onclick = () => send('play');
 $('pause').onclick = () => send('pause');
 $('step').onclick = () => send('step');
+$('reset').onclick = () => send('reset');
 $('pace').onchange = (e) => send('pace ' + e.target.value);
 $('field').onchange = (e) => send('field ' + e.target.value);
 $('outline').onchange = (e) => { if (outline) outline.visible = e.target.checked; };

@@ -8,6 +8,7 @@
 #include <tissuefem/base/moved_entries.h>
 #include <tissuefem/base/parallel.h>
 #include <tissuefem/base/parameter_tools.h>
+#include <tissuefem/base/reset_request.h>
 #include <tissuefem/materials/consistency_check.h>
 #include <tissuefem/materials/material_set.h>
 #include <tissuefem/problems/interface.h>
@@ -264,10 +265,27 @@ namespace tissuefem
     const std::vector<std::string> args(argv + 1, argv + argc);
     try
       {
-        const CommandLine line = read_command_line(args);
+        CommandLine line = read_command_line(args);
         if (line.finished)
           return *line.finished;
-        return run_parameter_file(line);
+        for (;;)
+          try
+            {
+              return run_parameter_file(line);
+            }
+          catch (const ResetRequest &reset)
+            {
+              // The same file from t = 0 (not from a checkpoint), keeping
+              // the live view's address.
+              line.restart.clear();
+              line.overrides.insert(line.overrides.end(),
+                                    reset.overrides.begin(),
+                                    reset.overrides.end());
+              parallel_tools::screen()
+                << "tissuefem: reset from the live view: the run starts "
+                   "again from t = 0"
+                << std::endl;
+            }
       }
     catch (const Interrupted &e)
       {

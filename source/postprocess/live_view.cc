@@ -3,6 +3,7 @@
 
 #include <tissuefem/base/interruption.h>
 #include <tissuefem/base/parallel.h>
+#include <tissuefem/base/reset_request.h>
 #include <tissuefem/output/obstacle_view.h>
 #include <tissuefem/output/output_files.h>
 #include <tissuefem/output/wire_format.h>
@@ -264,8 +265,22 @@ namespace tissuefem::postprocess
   void
   LiveView<dim>::wait(const time::State &state)
   {
+    if (port < 0)
+      return;
     if (server)
       hold(state.time);
+    // A reset asked on process 0 ends the run here on every process; the
+    // next run serves the same port, where the pages reconnect.
+    const int again
+      = Utilities::MPI::broadcast(parallel_tools::communicator(),
+                                  reset_due ? int(server->port()) : -1);
+    if (again < 0)
+      return;
+    if (server)
+      close_with("{\"type\":\"reset\"}");
+    throw ResetRequest{{"Output/Live view/Port=" + std::to_string(again),
+                        "Output/Live view/Wait for page="
+                          + std::to_string(std::max(wait_for_page, 10.))}};
   }
 
 
@@ -287,6 +302,8 @@ namespace tissuefem::postprocess
             paused    = false;
             step_once = verb == "step";
           }
+        else if (verb == "reset")
+          refusal = reset_refusal();
         else if (verb == "pace" && (argument == "wall" || argument == "fast"))
           pace_wall = argument == "wall";
         else if (verb == "grasp" || verb == "drag" || verb == "release"
@@ -310,6 +327,20 @@ namespace tissuefem::postprocess
                             + output::json_quote(refusal) + "}");
         restart_pacing(time);
       }
+  }
+
+
+  template <int dim>
+  std::string
+  LiveView<dim>::reset_refusal()
+  {
+    // A device's positions carry its own clock, which cannot go back.
+    for (const auto &[name, tool] : this->context->scene.tools)
+      if (tool->haptic_latency().size() == 2)
+        return "the run cannot start again: a device drives the " + name
+               + " tool";
+    reset_due = true;
+    return {};
   }
 
 
@@ -509,12 +540,15 @@ namespace tissuefem::postprocess
   LiveView<dim>::hold(const double time)
   {
     // A signal ends the pause: the run then stops after this step as usual.
-    while (paused && server->pages() > 0 && !interruption_received_here())
+    while (paused && !reset_due && server->pages() > 0
+           && !interruption_received_here())
       {
         server->wait(0.1);
         apply_commands(time);
         print_log();
       }
+    if (reset_due)
+      return;
     if (step_once)
       {
         // The next step runs, then the run pauses again.

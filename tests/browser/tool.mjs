@@ -10,6 +10,8 @@
 // puppeteer-core and checks that
 // - the probe is drawn: the colour at its centre on the page is the
 //   instrument's grey, not the background;
+// - reset starts the run again: the page reconnects by itself and shows
+//   step 0, and play runs it;
 // - dragging the probe towards the muscle moves it there: the page shows
 //   a non-zero force of the tissue on it (force units), the same force is
 //   a row of the run's tool_force-contact.csv, and that row has the probe
@@ -74,7 +76,16 @@ try {
   await page.screenshot({path: path.join(work, '1-loaded.png')});
 
   await page.click('#play');
-  check(await until(() => window.tissuefem.lastStep > 0), 'play advances the steps');
+  check(await until(() => window.tissuefem.lastStep > 2), 'play advances the steps');
+  // Reset: the run starts again (paused, as it started) and the page
+  // reconnects by itself.
+  await page.click('#reset');
+  check(await until(() => window.tissuefem.resets === 1 && !window.tissuefem.resetting &&
+                          window.tissuefem.lastStep === 0 && window.tissuefem.drives),
+        'after a reset the page reconnects and shows step 0');
+  await page.screenshot({path: path.join(work, '1-reset.png')});
+  await page.click('#play');
+  check(await until(() => window.tissuefem.lastStep > 0), 'play advances the steps again');
   // Towards the muscle: the probe sits at x = 0.0255 beside it, screen
   // right is about +x.
   await page.mouse.move(probe.x, probe.y);

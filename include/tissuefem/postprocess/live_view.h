@@ -38,6 +38,7 @@ namespace tissuefem::postprocess
    *
    * What pages send, and what the run does with it (text commands, from
    * the driving page): 'pause', 'play', 'step' (one step, then pause),
+   * 'reset' (the run starts again from t = 0: ResetRequest),
    * 'pace wall' / 'pace fast', 'field NAME', and for the mouse tool
    * (tool/mouse_grasp.h) 'grasp X Y Z', 'drag DX DY DZ', 'release', and for
    * the contact tool (tool/contact_tool.h) 'tool DX DY DZ'. Pausing and
@@ -91,6 +92,8 @@ namespace tissuefem::postprocess
     double      frame_rate = 60, wait_for_page = 0;
     /// Pacing to the wall clock (else as fast as it can), and paused.
     bool pace_wall = true, paused = false, step_once = false;
+    /// Root: the page asked to start again from t = 0.
+    bool reset_due = false;
     /// The field the pages colour by (index into field_names).
     unsigned int             field = 0;
     std::vector<std::string> field_names;
@@ -122,6 +125,10 @@ namespace tissuefem::postprocess
     /// The scene's mouse tool (null: none, mouse_unavailable says why).
     tool::MouseGrasp<dim> *
     mouse() const;
+    /// Root: asks for a reset (the run starts again at the next wait());
+    /// returns why not (empty: asked).
+    std::string
+    reset_refusal();
     /// Root: simulated time paces from @p time and from now on.
     void
     restart_pacing(const double time);
