@@ -16,36 +16,17 @@
 // Screenshots go to WORKDIR (test artifacts).
 import fs from 'node:fs';
 import path from 'node:path';
-import {spawn} from 'node:child_process';
-import puppeteer from 'puppeteer-core';
+import {check, finish, launchBrowser, liveAddress, sleep, startRun} from './harness.mjs';
 
 const [exe, scene, work] = process.argv.slice(2);
 fs.rmSync(work, {recursive: true, force: true});
-fs.mkdirSync(work, {recursive: true});
-const failures = [];
-const check = (ok, what) => { if (!ok) { failures.push(what); console.log('FAILED:', what); } };
-const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
-
-const log = fs.openSync(path.join(work, 'run.log'), 'w');
-const run = spawn(exe, [scene,
-  '--set', 'Boundary conditions/Dirichlet=0: x: 0 | 2: y: 0 | 4: z: 0',
-  '--set', 'Output/Live view/Port=0', '--set', 'Output/Live view/Start paused=true',
-  '--set', 'Output/Live view/Wait for page=60', '--set', 'Mouse/Grasp radius=0.2',
-  '--set', 'Time integration/Time step=0.02', '--set', 'Time integration/End time=30'],
-  {cwd: work, stdio: ['ignore', log, log]});
-let exitCode = null;
-const exited = new Promise((resolve) => run.on('exit', (code) => { exitCode = code; resolve(code); }));
-
-const addressFile = path.join(work, 'results', 'live_view');
-for (let k = 0; k < 300 && !fs.existsSync(addressFile); ++k) await sleep(50);
-const url = fs.readFileSync(addressFile, 'utf8').trim();
-
-const browser = await puppeteer.launch({
-  executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
-  headless: true,
-  args: ['--headless=new', '--no-sandbox', '--use-angle=swiftshader',
-         '--enable-unsafe-swiftshader', '--window-size=1200,800'],
-});
+const started = startRun(exe, scene, work, [
+  'Boundary conditions/Dirichlet=0: x: 0 | 2: y: 0 | 4: z: 0',
+  'Output/Live view/Port=0', 'Output/Live view/Start paused=true',
+  'Output/Live view/Wait for page=60', 'Mouse/Grasp radius=0.2',
+  'Time integration/Time step=0.02', 'Time integration/End time=30']);
+const url = await liveAddress(work, started);
+const browser = await launchBrowser();
 try {
   const page = await browser.newPage();
   await page.setViewport({width: 1200, height: 800});
@@ -108,8 +89,9 @@ try {
 
   // The run's own record of the drag: the force the page showed (the
   // record of the step before its frame) is a row of tool_force.csv.
-  await Promise.race([exited, new Promise((r) => setTimeout(r, 60000).unref())]);
-  check(exitCode === 0, 'the run ends by itself with exit 0 after the page closed (' + exitCode + ')');
+  await Promise.race([started.exited, new Promise((r) => setTimeout(r, 60000).unref())]);
+  check(started.code() === 0,
+        'the run ends by itself with exit 0 after the page closed (' + started.code() + ')');
   const rows = fs.readFileSync(path.join(work, 'results', 'tool_force.csv'), 'utf8')
     .trim().split('\n').slice(1).map((l) => l.split(',').map(Number));
   const held = rows.filter((r) => r[1] === 1);
@@ -120,10 +102,6 @@ try {
   check(same, 'the force the page showed is a row of tool_force.csv');
 } finally {
   await browser.close();
-  if (exitCode === null) run.kill();
+  if (started.code() === null) started.run.kill();
 }
-if (failures.length) {
-  console.log(fs.readFileSync(path.join(work, 'run.log'), 'utf8').slice(-3000));
-  process.exit(1);
-}
-console.log('browser live view: all checks passed');
+finish('live view', path.join(work, 'run.log'));

@@ -11,43 +11,22 @@
 // byte, and both runs must end with exit 0.
 import fs from 'node:fs';
 import path from 'node:path';
-import {spawn} from 'node:child_process';
-import puppeteer from 'puppeteer-core';
+import {check, finish, launchBrowser, liveAddress, sleep, startRun} from './harness.mjs';
 
 const [exe, scene, work] = process.argv.slice(2);
 fs.rmSync(work, {recursive: true, force: true});
-const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
-const failures = [];
-const check = (ok, what) => { if (!ok) { failures.push(what); console.log('FAILED:', what); } };
 
-function start(directory, pace) {
-  fs.mkdirSync(directory, {recursive: true});
-  const log = fs.openSync(path.join(directory, 'run.log'), 'w');
-  const run = spawn(exe, [scene, '--set', 'Output/Live view/Port=0',
-    '--set', 'Output/Live view/Pace=' + pace,
-    '--set', 'Time integration/End time=20', '--set', 'Output/Summary interval=50'],
-    {cwd: directory, stdio: ['ignore', log, log]});
-  const exited = new Promise((resolve) => run.on('exit', (code) => resolve(code)));
-  return {run, exited};
-}
-
-async function address(directory) {
-  const file = path.join(directory, 'results', 'live_view');
-  for (let k = 0; k < 300 && !fs.existsSync(file); ++k) await sleep(50);
-  return fs.readFileSync(file, 'utf8').trim();
-}
+const start = (directory, pace) => startRun(exe, scene, directory, [
+  'Output/Live view/Port=0', 'Output/Live view/Pace=' + pace,
+  'Time integration/End time=20', 'Output/Summary interval=50']);
 
 const quiet = path.join(work, 'no-page'), busy = path.join(work, 'pages');
 const reference = start(quiet, 'as fast as possible');
 check(await reference.exited === 0, 'the run without a page exits 0');
 
 const watched = start(busy, 'wall clock');
-const url = await address(busy);
-const browser = await puppeteer.launch({
-  executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
-  headless: true,
-  args: ['--headless=new', '--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
-});
+const url = await liveAddress(busy, watched);
+const browser = await launchBrowser();
 let visits = 0, ended = false;
 watched.exited.then(() => { ended = true; });
 try {
@@ -81,8 +60,4 @@ for (const file of ['output', 'results/probes.csv']) {
   const a = fs.readFileSync(path.join(quiet, file)), b = fs.readFileSync(path.join(busy, file));
   check(a.equals(b), file + ' is the same with and without pages');
 }
-if (failures.length) {
-  console.log(fs.readFileSync(path.join(busy, 'run.log'), 'utf8').slice(-3000));
-  process.exit(1);
-}
-console.log('browser reconnect: all checks passed');
+finish('reconnect', path.join(busy, 'run.log'));

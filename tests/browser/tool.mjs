@@ -22,40 +22,16 @@
 // Screenshots go to WORKDIR (test artifacts).
 import fs from 'node:fs';
 import path from 'node:path';
-import {spawn} from 'node:child_process';
-import puppeteer from 'puppeteer-core';
+import {check, finish, launchBrowser, liveAddress, sleep, startRun} from './harness.mjs';
 
 const [exe, scene, work] = process.argv.slice(2);
 fs.rmSync(work, {recursive: true, force: true});
-fs.mkdirSync(work, {recursive: true});
-const failures = [];
-const check = (ok, what) => { if (!ok) { failures.push(what); console.log('FAILED:', what); } };
-const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
-
-const log = fs.openSync(path.join(work, 'run.log'), 'w');
-const run = spawn(exe, [scene,
-  '--set', 'Contact/Obstacle 1/Motion=0; 0; 0', '--set', 'Output/Directory=results',
-  '--set', 'Output/VTU/Interval=0',
-  '--set', 'Output/Live view/Port=0', '--set', 'Output/Live view/Start paused=true',
-  '--set', 'Output/Live view/Wait for page=60', '--set', 'Time integration/End time=5'],
-  {cwd: work, stdio: ['ignore', log, log]});
-let exitCode = null;
-const exited = new Promise((resolve) => run.on('exit', (code) => { exitCode = code; resolve(code); }));
-
-const addressFile = path.join(work, 'results', 'live_view');
-for (let k = 0; k < 600 && !fs.existsSync(addressFile) && exitCode === null; ++k) await sleep(50);
-if (!fs.existsSync(addressFile)) {
-  console.log(fs.readFileSync(path.join(work, 'run.log'), 'utf8').slice(-3000));
-  process.exit(1);
-}
-const url = fs.readFileSync(addressFile, 'utf8').trim();
-
-const browser = await puppeteer.launch({
-  executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
-  headless: true,
-  args: ['--headless=new', '--no-sandbox', '--use-angle=swiftshader',
-         '--enable-unsafe-swiftshader', '--window-size=1200,800'],
-});
+const started = startRun(exe, scene, work, [
+  'Contact/Obstacle 1/Motion=0; 0; 0', 'Output/Directory=results', 'Output/VTU/Interval=0',
+  'Output/Live view/Port=0', 'Output/Live view/Start paused=true',
+  'Output/Live view/Wait for page=60', 'Time integration/End time=5']);
+const url = await liveAddress(work, started);
+const browser = await launchBrowser();
 try {
   const page = await browser.newPage();
   await page.setViewport({width: 1200, height: 800});
@@ -107,8 +83,9 @@ try {
   await sleep(300);
   await page.close();
 
-  await Promise.race([exited, new Promise((r) => setTimeout(r, 120000).unref())]);
-  check(exitCode === 0, 'the run ends by itself with exit 0 after the page closed (' + exitCode + ')');
+  await Promise.race([started.exited, new Promise((r) => setTimeout(r, 120000).unref())]);
+  check(started.code() === 0,
+        'the run ends by itself with exit 0 after the page closed (' + started.code() + ')');
   const rows = fs.readFileSync(path.join(work, 'results', 'tool_force-contact.csv'), 'utf8')
     .trim().split('\n').slice(1).map((l) => l.split(',').map(Number));
   const size = Math.hypot(...shown.force);
@@ -124,10 +101,6 @@ try {
         'the probe stays where the mouse let it go');
 } finally {
   await browser.close();
-  if (exitCode === null) run.kill();
+  if (started.code() === null) started.run.kill();
 }
-if (failures.length) {
-  console.log(fs.readFileSync(path.join(work, 'run.log'), 'utf8').slice(-3000));
-  process.exit(1);
-}
-console.log('browser tool: all checks passed');
+finish('tool', path.join(work, 'run.log'));

@@ -38,73 +38,51 @@ run, host, port = wc.start_run(exe, scene, work, [
     processes)
 
 
-class Page:
-    """A driving or watching page: its frames by step, texts by type."""
-
-    def __init__(self):
-        self.socket = wc.WebSocket(host, port)
-        self.socket.sock.settimeout(20)
-        self.frames, self.texts = {}, []
-
-    def until(self, test):
-        while not test():
-            what, body = wc.decode(*self.socket.receive())
-            if what == "frame":
-                self.frames[body["step"]] = body
-            elif what == "text":
-                self.texts.append(body)
-        return True
-
-    def has(self, kind):
-        return any(t.get("type") == kind for t in self.texts)
-
-
 try:
-    page = Page()
-    page.until(lambda: 0 in page.frames)
-    watcher = Page()
-    watcher.until(lambda: watcher.has("role"))
-    watcher.socket.send_text("reset")
-    watcher.until(lambda: watcher.has("error"))
-    check(any("drives" in t.get("message", "") or "watch" in
-              t.get("message", "") for t in watcher.texts
-              if t.get("type") == "error"),
-          "a watcher's reset is refused: %s" % watcher.texts[-1])
-    watcher.socket.close()
+    page = wc.Page(host, port)
+    page.until_step(0)
+    watcher = wc.Page(host, port)
+    watcher.until(lambda: bool(watcher.of_type("role")))
+    watcher.send("reset")
+    watcher.until(lambda: bool(watcher.of_type("error")))
+    refusals = [t.get("message", "") for t in watcher.of_type("error")]
+    check(any("drives" in m or "watch" in m for m in refusals),
+          "a watcher's reset is refused: %s" % refusals)
+    watcher.close()
 
-    page.socket.send_text("grasp 1 1 1")
-    page.socket.send_text("drag 0 0.05 0")
+    page.send("grasp 1 1 1")
+    page.send("drag 0 0.05 0")
     for k in range(1, 4):
-        page.socket.send_text("step")
-        page.until(lambda: k in page.frames)
+        page.send("step")
+        page.until_step(k)
     check(page.frames[3]["holding"] and page.frames[3]["stored"] > 0,
           "before the reset: the mouse holds, the body stores energy")
-    page.socket.send_text("reset")
+    page.send("reset")
     try:
-        page.until(lambda: page.has("reset"))
+        page.until(lambda: bool(page.of_type("reset")))
         page.until(lambda: False)
     except ConnectionError:
         pass
-    check(page.has("reset"), "the page is told 'reset'")
+    check(bool(page.of_type("reset")), "the page is told 'reset'")
 
     # The same address again (the run sets up anew first).
     again = None
     for _ in range(200):
         try:
-            again = Page()
+            again = wc.Page(host, port)
             break
         except OSError:
             time.sleep(0.05)
     check(again is not None, "the run serves the same address again")
-    again.until(lambda: 0 in again.frames)
+    again.until_step(0)
     first = again.frames[0]
-    check(again.has("scene"), "a new greeting")
+    check(bool(again.of_type("scene")), "a new greeting")
     check(first["time"] == 0 and max(abs(x) for x in first["u"]) == 0
           and first["stored"] == 0 and not first["holding"],
           "step 0 at t = 0: no displacement, no energy, no grasp")
-    again.socket.send_text("play")
-    again.until(lambda: again.has("end"))
-    again.socket.close()
+    again.send("play")
+    again.until(lambda: bool(again.of_type("end")))
+    again.close()
     check(run.wait(timeout=60) == 0, "tissuefem exited 0")
 finally:
     if run.poll() is None:

@@ -42,62 +42,43 @@ run, host, port = wc.start_run(exe, scene, work, [
     "Output/Live view/Port=0", "Output/Live view/Wait for page=60",
     "Output/Live view/Start paused=true",
     "Output/Live view/Pace=as fast as possible"], processes)
-frames = {}
 try:
-    page = wc.WebSocket(host, port)
-    page.sock.settimeout(20)
-    greeting, topology, errors = None, None, []
-
-    def until_step(step):
-        global greeting, topology
-        while step not in frames:
-            what, body = wc.decode(*page.receive())
-            if what == "topology":
-                topology = body
-            elif what == "frame":
-                frames[body["step"]] = body
-            elif what == "text" and body.get("type") == "scene":
-                greeting = body
-            elif what == "text" and body.get("type") == "error":
-                errors.append(body["message"])
-        return frames[step]
-
-    until_step(0)
+    page = wc.Page(host, port)
+    page.until_step(0)
+    greeting = page.of_type("scene")[0]
     check(greeting["obstacles"] == [{"name": "press", "role": "mouse"}],
           "the greeting names the press, moved by the mouse: %s"
           % greeting["obstacles"])
-    drawn = topology["obstacles"]
+    drawn = page.topology["obstacles"]
     check(len(drawn) == 1 and len(drawn[0]["tri"]) == 6,
           "the press is drawn as two triangles")
     ys = sorted(drawn[0]["x"][1::3])
     check(ys[0] == 0.5 and ys[1] == 0.5 and ys[2] > 0.5,
           "the press's drawing: a band behind the plane y = 0.5: %s" % ys)
 
-    page.send_text("tool 0 nan 0")
-    page.send_text("tool 0 1e308 0")
-    page.send_text("tool 0 -0.025 0")
-    page.send_text("step")
-    until_step(1)
+    page.send("tool 0 nan 0")
+    page.send("tool 0 1e308 0")
+    page.send("tool 0 -0.025 0")
+    page.send("step")
+    page.until_step(1)
+    errors = [t["message"] for t in page.of_type("error")]
     check(any("three numbers" in e for e in errors),
           "an offset that is not a number is refused: %s" % errors)
     check(any("diameter" in e for e in errors),
           "an offset beyond the diameter is refused: %s" % errors)
-    page.send_text("tool 0 -0.05 0")
-    page.send_text("step")
-    until_step(2)
-    page.send_text("play")
+    page.send("tool 0 -0.05 0")
+    page.send("step")
+    page.until_step(2)
+    page.send("play")
     for step, offset in [(1, -0.025), (2, -0.05)]:
-        press = frames[step]["obstacles"][0]
+        press = page.frames[step]["obstacles"][0]
         check(abs(press["translation"][1] - offset) < 1e-7
               and abs(press["offset"][1] - offset) < 1e-7
               and press["translation"][0] == 0,
               "step %d: the press translated by (0, %g): %s"
               % (step, offset, press["translation"]))
         check(press["touching"], "step %d: the press touches" % step)
-    while True:
-        what, body = wc.decode(*page.receive())
-        if what == "text" and body.get("type") == "end":
-            break
+    page.until(lambda: page.of_type("end"))
     page.close()
     check(run.wait(timeout=60) == 0, "tissuefem exited 0")
 finally:
@@ -109,7 +90,7 @@ rows = list(csv.DictReader(open(os.path.join(
     work, "results", "tool_force-contact.csv"))))
 by_time = {round(float(r["time"]), 9): r for r in rows}
 for step, t in [(1, 0.5), (2, 1.0)]:
-    f = frames[step]["obstacles"][0]["force"]
+    f = page.frames[step]["obstacles"][0]["force"]
     row = by_time[t]
     recorded = (float(row["force_x"]), float(row["force_y"]))
     check(all(abs(f[d] - recorded[d]) <= 1e-6 * (1 + abs(recorded[d]))

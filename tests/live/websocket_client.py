@@ -204,6 +204,42 @@ def decode(opcode, payload):
     return "unknown", payload
 
 
+class Page:
+    """A page on the live view at HOST:PORT: its messages as they arrive,
+    kept as frames (by step), the last topology and the text messages."""
+
+    def __init__(self, host, port, timeout=20):
+        self.socket = WebSocket(host, port)
+        self.socket.sock.settimeout(timeout)
+        self.frames, self.texts, self.topology = {}, [], None
+
+    def until(self, test):
+        """Reads messages until TEST() holds."""
+        while not test():
+            what, body = decode(*self.socket.receive())
+            if what == "frame":
+                self.frames[body["step"]] = body
+            elif what == "topology":
+                self.topology = body
+            elif what == "text":
+                self.texts.append(body)
+
+    def until_step(self, step):
+        """Reads until the frame of STEP has come; returns it."""
+        self.until(lambda: step in self.frames)
+        return self.frames[step]
+
+    def of_type(self, kind):
+        """The text messages of type KIND so far."""
+        return [t for t in self.texts if t.get("type") == kind]
+
+    def send(self, text):
+        self.socket.send_text(text)
+
+    def close(self):
+        self.socket.close()
+
+
 def same_summary(output, expected):
     """Whether the summary file OUTPUT of a run with the live view equals
     EXPECTED (that of the run without it) by numdiff, once the lines of the
