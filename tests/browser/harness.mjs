@@ -48,6 +48,20 @@ export function launchBrowser() {
   });
 }
 
+// A page of @p browser at @p url, 1200 x 800, once it has drawn a frame;
+// returns {page, errors (the page's script errors so far)}.
+export async function openPage(browser, url) {
+  const page = await browser.newPage();
+  await page.setViewport({width: 1200, height: 800});
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(String(e)));
+  await page.goto(url);
+  await page.waitForFunction(() => window.tissuefem.topology && window.tissuefem.lastStep >= 0,
+                             {timeout: 20000});
+  await sleep(300);
+  return {page, errors};
+}
+
 // Exits 1 with the tail of @p log if a check failed, else prints that
 // test @p name passed.
 export function finish(name, log) {

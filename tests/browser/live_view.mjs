@@ -16,7 +16,7 @@
 // Screenshots go to WORKDIR (test artifacts).
 import fs from 'node:fs';
 import path from 'node:path';
-import {check, finish, launchBrowser, liveAddress, sleep, startRun} from './harness.mjs';
+import {check, finish, launchBrowser, liveAddress, openPage, sleep, startRun} from './harness.mjs';
 
 const [exe, scene, work] = process.argv.slice(2);
 fs.rmSync(work, {recursive: true, force: true});
@@ -28,14 +28,7 @@ const started = startRun(exe, scene, work, [
 const url = await liveAddress(work, started);
 const browser = await launchBrowser();
 try {
-  const page = await browser.newPage();
-  await page.setViewport({width: 1200, height: 800});
-  const errors = [];
-  page.on('pageerror', (e) => errors.push(String(e)));
-  await page.goto(url);
-  await page.waitForFunction(() => window.tissuefem.topology && window.tissuefem.lastStep >= 0,
-                             {timeout: 20000});
-  await sleep(300);
+  const {page, errors} = await openPage(browser, url);
   const state = () => page.evaluate(() => ({
     step: window.tissuefem.lastStep, force: window.tissuefem.force,
     forceText: document.getElementById('n-force').textContent,

@@ -22,25 +22,18 @@
 // Screenshots go to WORKDIR (test artifacts).
 import fs from 'node:fs';
 import path from 'node:path';
-import {check, finish, launchBrowser, liveAddress, sleep, startRun} from './harness.mjs';
+import {check, finish, launchBrowser, liveAddress, openPage, sleep, startRun} from './harness.mjs';
 
 const [exe, scene, work] = process.argv.slice(2);
 fs.rmSync(work, {recursive: true, force: true});
 const started = startRun(exe, scene, work, [
   'Contact/Obstacle 1/Motion=0; 0; 0', 'Output/Directory=results', 'Output/VTU/Interval=0',
   'Output/Live view/Port=0', 'Output/Live view/Start paused=true',
-  'Output/Live view/Wait for page=60', 'Time integration/End time=5']);
+  'Output/Live view/Wait for page=60', 'Time integration/End time=3']);
 const url = await liveAddress(work, started);
 const browser = await launchBrowser();
 try {
-  const page = await browser.newPage();
-  await page.setViewport({width: 1200, height: 800});
-  const errors = [];
-  page.on('pageerror', (e) => errors.push(String(e)));
-  await page.goto(url);
-  await page.waitForFunction(() => window.tissuefem.topology && window.tissuefem.lastStep >= 0,
-                             {timeout: 20000});
-  await sleep(300);
+  const {page, errors} = await openPage(browser, url);
   const until = (test, arg) => page.waitForFunction(test, {timeout: 30000}, arg).then(() => true, () => false);
 
   const probe = await page.evaluate(() => window.tissuefem.instrumentPoint());
