@@ -133,8 +133,9 @@ namespace tissuefem::problems
     if (!integrator->checkpointable())
       return "integrator '" + time_parameters.integrator
              + "' cannot be checkpointed (with these settings)";
-    if (!scene->tools.empty())
-      return "a scene with a tool cannot be checkpointed";
+    for (const auto &[name, tool] : scene->tools)
+      if (!tool->checkpointable())
+        return "a scene with the " + name + " tool cannot be checkpointed";
     if (adaptation->enabled())
       return "a scene with mesh refinement cannot be checkpointed";
     if (scene->obstacle_contact && scene->obstacle_contact->keeps_history())

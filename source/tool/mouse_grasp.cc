@@ -33,7 +33,6 @@ namespace tissuefem::tool
   MouseGrasp<dim>::unavailable(ParameterHandler &prm)
   {
     prm.enter_subsection("Output");
-    const bool checkpoints = prm.get_integer("Checkpoint interval") > 0;
     prm.enter_subsection("Live view");
     const bool view = prm.get_integer("Port") >= 0;
     prm.leave_subsection();
@@ -54,10 +53,6 @@ namespace tissuefem::tool
     // Held vertices are those of the mesh at the grasp.
     if (adaptive)
       return "the mesh adapts";
-    // A scene with a tool cannot be checkpointed: the mouse would make a
-    // run with periodic checkpoints fail.
-    if (checkpoints)
-      return "the run writes checkpoints ('Output/Checkpoint interval')";
     return {};
   }
 

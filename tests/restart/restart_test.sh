@@ -9,7 +9,10 @@
 #             (of 1000 steps) is restarted from its checkpoint, as after a
 #             crash at step 700; the restart cuts its files back to step 700
 #             and must rewrite the rest identically.
-# Usage: restart_test.sh TISSUEFEM SCENE WORKDIR signal|periodic
+#   view      as signal, every run with the live view on (--view, which adds
+#             the mouse tool; no page opens): the checkpoint holds nothing
+#             of the mouse, and the restart gives the same outputs.
+# Usage: restart_test.sh TISSUEFEM SCENE WORKDIR signal|periodic|view
 set -u
 exe=$1 scene=$2 work=$3 mode=$4
 rm -rf "$work"; mkdir -p "$work"; cd "$work" || exit 1
@@ -18,6 +21,8 @@ fail() { echo "FAILED: $*"; exit 1; }
 if [ "$mode" = periodic ]; then
   common=(--set "Time integration/Integrator=damped central difference"
           --set "Time integration/Time step=0.002" --set "Time integration/End time=2")
+elif [ "$mode" = view ]; then
+  common=(--view --set "Output/Live view/Pace=as fast as possible")
 else
   common=()
 fi
@@ -27,8 +32,8 @@ fi
   --set "Output/Summary file=reference-summary.txt" > reference.log 2>&1 \
   || fail "reference run exited with $?"
 
-if [ "$mode" = signal ]; then
-  "$exe" "$scene" --set "Output/Directory=run" \
+if [ "$mode" != periodic ]; then
+  "$exe" "$scene" "${common[@]}" --set "Output/Directory=run" \
     --set "Output/Summary file=run-summary.txt" > run.log 2>&1 &
   pid=$!
   # Wait until a few hundred steps are written, then ask it to stop.

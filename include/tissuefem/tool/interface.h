@@ -96,6 +96,14 @@ namespace tissuefem::tool
       return false;
     }
 
+    /// Whether a run with this tool may write checkpoints: a tool whose
+    /// motion, holds or device link a checkpoint does not keep may not.
+    virtual bool
+    checkpointable() const
+    {
+      return false;
+    }
+
     /// Opens any link to a device (which may leave a file in
     /// @p directory, the output directory), with limits on what the device
     /// may ask scaled by @p body_diameter (length units). Called once,

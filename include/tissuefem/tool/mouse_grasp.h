@@ -24,9 +24,10 @@ namespace tissuefem::tool
    * held and follow the drag, u = u_grasp + D(t), until the page lets go.
    * It exists in runs with a live view ('Output/Live view/Port' >= 0, dim
    * 2 or 3) whose scene has no grasping tool of its own (the solid holds
-   * one set of vertices at a time), no adaptive mesh (held vertices are
-   * those of one mesh) and no periodic checkpoints (a scene with a tool
-   * has none): unavailable() says which.
+   * one set of vertices at a time) and no adaptive mesh (held vertices are
+   * those of one mesh): unavailable() says which. A checkpoint keeps
+   * nothing of it: a restarted run has nothing grasped, as when the page
+   * leaves.
    *
    * The page's requests arrive on process 0 (request_grasp(), request_drag(),
    * request_release(), from the live view), at any time; synchronize(),
@@ -76,6 +77,11 @@ namespace tissuefem::tool
     act(const time::State &state, solid::Solid<dim> &solid) override;
     void
     connect(const std::string &directory, const double body_diameter) override;
+    bool
+    checkpointable() const override
+    {
+      return true;
+    }
     Record<dim>
     record(const time::State           &state,
            solid::Solid<dim>           &solid,
