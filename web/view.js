@@ -119,8 +119,11 @@ function setTopology(buffer) {
 const instruments = {meshes: [], arrows: [], centres: []};
 
 function setInstruments(d, at) {
-  for (const m of instruments.meshes) { scene3.remove(m); m.geometry.dispose(); }
-  for (const a of instruments.arrows) if (a) scene3.remove(a);
+  for (const m of instruments.meshes) {
+    scene3.remove(m); m.geometry.dispose(); m.material.dispose();
+  }
+  for (const a of instruments.arrows)
+    if (a) { scene3.remove(a); a.line.material.dispose(); a.cone.material.dispose(); }
   instruments.meshes = []; instruments.arrows = []; instruments.centres = [];
   if (at + 4 > d.byteLength) return;
   const count = d.getUint32(at, true), roles = (view.scene && view.scene.obstacles) || [];
@@ -556,6 +559,7 @@ function receive(event) {
     $('connection').textContent = 'the run ended at t = ' + message.time;
   } else if (message.type === 'reset') {
     view.resetting = performance.now();
+    view.drives = false;
     ++view.resets;
     $('connection').textContent = 'reset: the run starts again from t = 0...';
   }

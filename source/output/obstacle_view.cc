@@ -62,6 +62,15 @@ namespace tissuefem::output
 
 
   template <int dim>
+  Tensor<1, dim>
+  ObstacleView<dim>::placement(const contact::Pose<dim> &pose)
+  {
+    return pose.translation + pose.pivot
+           - pose.rotation * Tensor<1, dim>(pose.pivot);
+  }
+
+
+  template <int dim>
   void
   ObstacleView<dim>::append_poses(std::string                 &bytes,
                                   const contact::Reports<dim> &reports,
@@ -72,13 +81,9 @@ namespace tissuefem::output
     const auto &obstacles = contact->obstacles();
     for (unsigned int i = 0; i < obstacles.size(); ++i)
       {
-        const auto         pose = obstacles[i].pose(time);
-        std::vector<float> block(floats_per_obstacle, 0.f);
-        // The page draws the shape's point y at c + t + R (y - c): the
-        // translation sent is c + t - R c, so that x = t' + R y.
-        const Tensor<1, dim> offset
-          = pose.translation + pose.pivot
-            - pose.rotation * Tensor<1, dim>(pose.pivot);
+        const auto           pose = obstacles[i].pose(time);
+        std::vector<float>   block(floats_per_obstacle, 0.f);
+        const Tensor<1, dim> offset = placement(pose);
         for (unsigned int d = 0; d < 3; ++d)
           block[3 + 4 * d] = 1;
         for (unsigned int d = 0; d < dim; ++d)

@@ -48,7 +48,9 @@ namespace tissuefem::output
       "then those of an uninterrupted run, bit for bit except the "
       "wall-clock columns of statistics.csv (same FILE.prm and "
       "process count; quasistatic, backward Euler, and damped central "
-      "difference without active region; no tool or mesh adaptation).");
+      "difference without active region; no tool but the live view's "
+      "mouse, which is checkpointed only while it holds nothing; no mesh "
+      "adaptation).");
     prm.leave_subsection();
   }
 

@@ -336,7 +336,7 @@ namespace tissuefem::postprocess
   {
     // A device's positions carry its own clock, which cannot go back.
     for (const auto &[name, tool] : this->context->scene.tools)
-      if (tool->haptic_latency().size() == 2)
+      if (tool->follows_device())
         return "the run cannot start again: a device drives the " + name
                + " tool";
     reset_due = true;

@@ -135,7 +135,7 @@ namespace tissuefem::problems
              + "' cannot be checkpointed (with these settings)";
     for (const auto &[name, tool] : scene->tools)
       if (!tool->checkpointable())
-        return "a scene with the " + name + " tool cannot be checkpointed";
+        return "the " + name + " tool cannot be checkpointed now";
     if (adaptation->enabled())
       return "a scene with mesh refinement cannot be checkpointed";
     if (scene->obstacle_contact && scene->obstacle_contact->keeps_history())
@@ -674,8 +674,11 @@ namespace tissuefem::problems
                  << report.residual_norm << std::defaultfloat
                  << std::setprecision(6) << std::endl;
           postprocess(step, report, state);
+          // Due and possible (the mouse may hold the tissue now: the
+          // last checkpoint then stays).
           const unsigned int interval = output_parameters.checkpoint_interval;
-          if (interval > 0 && step % interval == 0)
+          if (interval > 0 && step % interval == 0
+              && checkpoint_obstacle().empty())
             write_checkpoint(step, state);
         }
         wait_for_postprocessors(timer, state);

@@ -102,8 +102,8 @@ namespace tissuefem::tool
         // count from where its own motion starts.
         const contact::Obstacle<dim> own = obstacles[index];
         start                            = own.pose(0.).translation;
-        obstacles[index].follow([own, this](const double t) {
-          return own.pose(t).translation + motion(t);
+        obstacles[index].follow([own, offset = motion](const double t) {
+          return own.pose(t).translation + (*offset)(t);
         });
       }
   }
@@ -154,7 +154,7 @@ namespace tissuefem::tool
         const Tensor<1, dim> target
           = Utilities::MPI::broadcast(parallel_tools::communicator(),
                                       asked_offset);
-        motion.advance(time, target, 0.1 * diameter);
+        motion->advance(time, target, 0.1 * diameter);
       }
     return haptic.synchronize(time, table);
   }

@@ -12,13 +12,18 @@
 //   inscribed polygon's, (n / 2) R^2 sin(2 pi / n) (+ 2 R L); a ball's and
 //   a capsule's between 0.97 times the exact volume and the exact volume
 //   (an inscribed polyhedron); an octahedron read from OBJ exactly
-//   (4/3 a^3).
+//   (4/3 a^3);
+// - where the page puts a drawing: for a box turned, rotating about a
+//   centre of its own and moving, at t = 0.7, every corner placed by the
+//   frames' translation and rotation (ObstacleView::placement(), x = t' +
+//   R y) is where contact's pose puts it (Pose::world()).
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
 
 #include <tissuefem/app/parameters.h>
 #include <tissuefem/contact/obstacle.h>
+#include <tissuefem/output/obstacle_view.h>
 
 #include <cmath>
 #include <fstream>
@@ -87,6 +92,49 @@ namespace
   prefix(const contact::Obstacle<dim> &o)
   {
     return std::to_string(dim) + "D " + o.name + ": ";
+  }
+
+  /// A turned box that rotates about (1, 0.5, -0.2) and moves.
+  std::string
+  turning(const int dim)
+  {
+    return std::string(R"(
+    subsection Contact
+      subsection Obstacle 6
+        set Shape           = box
+        set Name            = turning box
+        set Motion          = 0.3*t; -0.1; 0.2
+        set Rotation centre = 1, 0.5, -0.2
+        set Rotation        = )")
+           + (dim == 2 ? "0.4*t + 0.1" : "0.1*t; 0.3; -0.2*t") + R"(
+        subsection box
+          set Centre         = 2, -1, 0.5
+          set Half lengths   = 0.5, 0.25, 1
+          set Rotation angle = 20
+          set Rotation axis  = 0, 1, 1
+        end
+      end
+    end
+  )";
+  }
+
+  /// The page's placement of a drawing against contact's pose.
+  template <int dim>
+  void
+  check_placement(const contact::Obstacle<dim> &o)
+  {
+    const auto           pose  = o.pose(0.7);
+    const Tensor<1, dim> shift = output::ObstacleView<dim>::placement(pose);
+    double               error = 0;
+    for (const auto &y : o.drawing(Point<dim>(), 4).vertices)
+      tissuefem_tests::raise(
+        error, (shift + pose.rotation * y - pose.world(y)).norm());
+    tissuefem_tests::check(pose.rotates, prefix(o) + "rotates at t = 0.7", "");
+    tissuefem_tests::check_small(error,
+                                 1e-12,
+                                 prefix(o)
+                                   + "corners placed as contact's pose puts "
+                                     "them");
   }
 
   /// The closed-form area (2D) or volume (3D), and whether the drawing
@@ -204,14 +252,18 @@ namespace
   void
   check()
   {
-    // A fifth slot, as a parameter file naming it would declare.
-    contact::name_obstacle_slot("5", "shape_drawings");
+    // Slots up to 6, as a parameter file naming them would declare.
+    contact::name_obstacle_slot("6", "shape_drawings");
     ParameterHandler prm;
     declare_all_parameters(prm);
     prm.parse_input_from_string("set Dimension = " + std::to_string(dim)
-                                + shapes + (dim == 3 ? octahedron : ""));
+                                + shapes + (dim == 3 ? octahedron : "")
+                                + turning(dim));
     for (const auto &o : contact::Obstacle<dim>::create_all(prm, "."))
-      check_obstacle(o);
+      if (o.name == "turning box")
+        check_placement(o);
+      else
+        check_obstacle(o);
   }
 } // namespace
 

@@ -61,6 +61,12 @@ namespace tissuefem::output
                  const contact::Reports<dim> &reports,
                  const double                 time) const;
 
+    /// The translation t' that places a drawing's corner y (in the shape's
+    /// frame) where @p pose puts it: x = t' + R y (pose.h: x = c + t + R (y
+    /// - c), so t' = c + t - R c).
+    static Tensor<1, dim>
+    placement(const contact::Pose<dim> &pose);
+
   private:
     const contact::PenaltyContact<dim> *contact;
     const tool::ContactTool<dim>       *tool;

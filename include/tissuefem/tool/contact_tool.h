@@ -89,6 +89,11 @@ namespace tissuefem::tool
     {
       return haptic.latency();
     }
+    bool
+    follows_device() const override
+    {
+      return haptic.live();
+    }
 
     /// The contact force on the tool after a step, and the haptic samples.
     Record<dim>
@@ -123,7 +128,7 @@ namespace tissuefem::tool
     Tensor<1, dim>
     mouse_offset(const double time) const
     {
-      return motion(time);
+      return (*motion)(time);
     }
 
   private:
@@ -139,11 +144,14 @@ namespace tissuefem::tool
     HapticRenderer<dim>  haptic;
     unsigned int         steps_touching = 0, steps = 0;
     /// The live view's mouse: whether it may move the tool, the offset it
-    /// asked (process 0) and the offset's motion; the body's diameter.
-    bool             mouse = false;
-    Tensor<1, dim>   asked_offset;
-    MouseMotion<dim> motion;
-    double           diameter = 1;
+    /// asked (process 0) and the offset's motion (shared with the
+    /// obstacle's follower, which may outlive the tool); the body's
+    /// diameter.
+    bool                              mouse = false;
+    Tensor<1, dim>                    asked_offset;
+    std::shared_ptr<MouseMotion<dim>> motion
+      = std::make_shared<MouseMotion<dim>>();
+    double diameter = 1;
     /// Where its own motion starts (with the mouse: pose(0) moves with it).
     Tensor<1, dim> start;
   };

@@ -106,6 +106,11 @@ namespace tissuefem::tool
     {
       return haptic.latency();
     }
+    bool
+    follows_device() const override
+    {
+      return haptic.live();
+    }
 
     /// The force after a step (every process calls), and the haptic
     /// forces extrapolated for the instants since the previous step.

@@ -96,10 +96,19 @@ namespace tissuefem::tool
       return false;
     }
 
-    /// Whether a run with this tool may write checkpoints: a tool whose
-    /// motion, holds or device link a checkpoint does not keep may not.
+    /// Whether a checkpoint may be written now with this tool in the
+    /// scene: a tool whose motion, holds or device link a checkpoint does
+    /// not keep may not.
     virtual bool
     checkpointable() const
+    {
+      return false;
+    }
+
+    /// Whether a device on a live port moves it (its positions carry the
+    /// device's clock, so the run's time cannot go back).
+    virtual bool
+    follows_device() const
     {
       return false;
     }

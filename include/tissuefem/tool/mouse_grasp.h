@@ -25,9 +25,9 @@ namespace tissuefem::tool
    * It exists in runs with a live view ('Output/Live view/Port' >= 0, dim
    * 2 or 3) whose scene has no grasping tool of its own (the solid holds
    * one set of vertices at a time) and no adaptive mesh (held vertices are
-   * those of one mesh): unavailable() says which. A checkpoint keeps
-   * nothing of it: a restarted run has nothing grasped, as when the page
-   * leaves.
+   * those of one mesh): unavailable() says which. Checkpoints are written
+   * while it holds nothing (checkpointable()): a restarted run has nothing
+   * grasped, as when the page leaves.
    *
    * The page's requests arrive on process 0 (request_grasp(), request_drag(),
    * request_release(), from the live view), at any time; synchronize(),
@@ -77,10 +77,12 @@ namespace tissuefem::tool
     act(const time::State &state, solid::Solid<dim> &solid) override;
     void
     connect(const std::string &directory, const double body_diameter) override;
+    /// Not while it holds vertices (a checkpoint keeps no hold); else a
+    /// restart has nothing grasped, as when the page leaves.
     bool
     checkpointable() const override
     {
-      return true;
+      return !held;
     }
     Record<dim>
     record(const time::State           &state,
