@@ -514,20 +514,22 @@ namespace tissuefem::postprocess
     put_all(*bytes, displacement);
     if (!values.empty())
       put_all(*bytes, values[0]);
-    // The mouse: holding (0 or 1), the grasp point (reference), the
-    // displacement it imposes, the force on it after the previous step.
-    std::vector<float> mouse_block(10, 0.f);
-    if (const auto *mouse = this->mouse(); mouse && mouse->holding())
-      {
-        mouse_block[0] = 1;
-        for (unsigned int d = 0; d < dim; ++d)
-          {
-            mouse_block[1 + d] = mouse->point()[d];
-            mouse_block[4 + d] = mouse->displacement(step.state.time)[d];
-            mouse_block[7 + d] = mouse->force()[d];
-          }
-      }
-    put_all(*bytes, mouse_block);
+    // The grasp (the mouse's, or the scene's grasping tool's): holding (0
+    // or 1), the grasp point (reference), the displacement it imposes, the
+    // force on it after the previous step.
+    std::vector<float> grasp_block(10, 0.f);
+    for (const auto &[name, tool] : scene.tools)
+      if (const auto grasp = tool->grasp(step.state.time))
+        {
+          grasp_block[0] = 1;
+          for (unsigned int d = 0; d < dim; ++d)
+            {
+              grasp_block[1 + d] = grasp->point[d];
+              grasp_block[4 + d] = grasp->displacement[d];
+              grasp_block[7 + d] = grasp->force[d];
+            }
+        }
+    put_all(*bytes, grasp_block);
     obstacles->append_poses(*bytes, step.contact, step.state.time);
     server->set_frame(std::move(bytes));
     last_frame = Clock::now();

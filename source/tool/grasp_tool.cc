@@ -219,7 +219,21 @@ namespace tissuefem::tool
     result.position = displacement(state.time);
     result.engaged  = holding;
     result.haptic   = haptic.update(state.time, result.force, holding);
+    last_force      = result.force;
     return result;
+  }
+
+
+  template <int dim>
+  std::optional<Grasp<dim>>
+  GraspTool<dim>::grasp(const double time) const
+  {
+    if (!holding)
+      return std::nullopt;
+    // u = u_grasp + d(t) - d(t_grasp) at the held vertices.
+    return Grasp<dim>{grasp_point,
+                      displacement(time) - displacement(grasp_time_actual),
+                      last_force};
   }
 
 

@@ -195,9 +195,7 @@ namespace tissuefem::tool
     if (grasp_due)
       {
         solid.hold(
-          vertices,
-          [this](const double t) { return displacement(t); },
-          state.u);
+          vertices, [this](const double t) { return motion(t); }, state.u);
         held      = true;
         grasp_due = false;
         ++grasps;
@@ -219,7 +217,7 @@ namespace tissuefem::tool
         for (unsigned int d = 0; d < dim; ++d)
           result.force[d] = values[d];
       }
-    result.position = held ? displacement(state.time) : Tensor<1, dim>();
+    result.position = held ? motion(state.time) : Tensor<1, dim>();
     result.engaged  = held;
     last_force      = result.force;
     largest_force   = std::max(largest_force, result.force.norm());

@@ -128,6 +128,9 @@ namespace tissuefem::tool
     Tensor<1, dim>
     displacement(const double time) const;
 
+    std::optional<Grasp<dim>>
+    grasp(const double time) const override;
+
   private:
     ToolParameters                       parameters;
     Point<dim>                           grasp_point;
@@ -136,7 +139,9 @@ namespace tissuefem::tool
     /// Recorded or live positions (or none, with 'Trajectory').
     TrajectoryTable<dim> table;
     bool                 holding = false, released = false;
-    double               grasp_time_actual = 0;
+    /// The force of the tissue on it at the last record().
+    Tensor<1, dim> last_force;
+    double         grasp_time_actual = 0;
     /// The forces the device feels between steps.
     HapticRenderer<dim> haptic;
   };

@@ -10,12 +10,29 @@
 #include <tissuefem/time/interface.h>
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace tissuefem::tool
 {
   using namespace dealii;
+
+  /**
+   * What a view shows of a tool that holds vertices (the live view's
+   * arrow): where it grasped, how far it moved them since, and the force
+   * of the tissue on it after the last record().
+   */
+  template <int dim>
+  struct Grasp
+  {
+    /// The grasped point (reference coordinates, length units).
+    Point<dim> point;
+    /// The held vertices' displacement since the grasp (length units).
+    Tensor<1, dim> displacement;
+    /// The force the tissue exerts on the tool (force units).
+    Tensor<1, dim> force;
+  };
 
   /**
    * What a tool reports after a step. The 'tool force' postprocessor writes
@@ -94,6 +111,15 @@ namespace tissuefem::tool
     allows_refinement() const
     {
       return false;
+    }
+
+    /// What it holds at @p time, for a view (none: it holds nothing, or
+    /// it is not a grasping tool).
+    virtual std::optional<Grasp<dim>>
+    grasp(const double time) const
+    {
+      (void)time;
+      return std::nullopt;
     }
 
     /// Whether a checkpoint may be written now with this tool in the

@@ -91,28 +91,12 @@ namespace tissuefem::tool
     std::string
     summary() const override;
 
-    /// Whether it holds vertices now, where (reference point) and how far
-    /// it moved them (for the view).
-    bool
-    holding() const
+    std::optional<Grasp<dim>>
+    grasp(const double time) const override
     {
-      return held;
-    }
-    const Point<dim> &
-    point() const
-    {
-      return grasp_point;
-    }
-    Tensor<1, dim>
-    displacement(const double time) const
-    {
-      return motion(time);
-    }
-    /// The force the tissue exerts on the tool after the last record().
-    const Tensor<1, dim> &
-    force() const
-    {
-      return last_force;
+      if (!held)
+        return std::nullopt;
+      return Grasp<dim>{grasp_point, motion(time), last_force};
     }
 
   private:
