@@ -174,12 +174,8 @@ function showInstruments(f) {
     view.toolForce = [b[12], b[13], b[14]];
     texts.push(shape.userData.name + ': ' + size.toPrecision(4) + ' force units' +
                (b[15] ? '' : ' (not touching)'));
-    if (size === 0 || !mesh) { arrow.visible = false; return; }
     arrow.position.copy(instruments.centres[k]).applyMatrix4(shape.matrix);
-    arrow.setDirection(new THREE.Vector3(b[12], b[13], b[14]).normalize());
-    const length = 0.25 * mesh.geometry.boundingSphere.radius;
-    arrow.setLength(length, 0.25 * length, 0.12 * length);
-    arrow.visible = true;
+    pointArrow(arrow, view.toolForce);
   });
   view.toolText = texts.join('; ') || 'no contact tool';
 }
@@ -288,23 +284,37 @@ function showForce(f) {
   view.forceText = holding ? size.toPrecision(4) + ' force units' : 'not grasping';
   if (!holding || !mesh || size === 0) { arrow.visible = false; return; }
   // From the grasped point as it is now (where the mouse put it).
-  const p = new THREE.Vector3(f.mouse[1], f.mouse[2], f.mouse[3]);
-  const nearest = nearestVertex(p);
+  const nearest = nearestVertex(f.mouse[1], f.mouse[2], f.mouse[3]);
   const position = mesh.geometry.attributes.position.array;
   arrow.position.set(position[3 * nearest], position[3 * nearest + 1], position[3 * nearest + 2]);
+  pointArrow(arrow, force);
+}
+
+// Shows @p arrow (placed) along @p force, a quarter of the body's size
+// long; hidden for no force.
+function pointArrow(arrow, force) {
+  const size = Math.hypot(force[0], force[1], force[2]);
+  if (size === 0 || !mesh) { arrow.visible = false; return; }
   arrow.setDirection(new THREE.Vector3(force[0], force[1], force[2]).normalize());
   const length = 0.25 * mesh.geometry.boundingSphere.radius;
   arrow.setLength(length, 0.25 * length, 0.12 * length);
   arrow.visible = true;
 }
 
-function nearestVertex(p) {
-  const x = view.topology.reference;
+// The surface vertex nearest the reference point (x, y, z): searched once
+// per grasp point and topology, not every frame.
+const nearestCache = {key: null, topology: null, index: 0};
+function nearestVertex(x, y, z) {
+  const key = [x, y, z].join(' ');
+  if (key === nearestCache.key && nearestCache.topology === view.topology)
+    return nearestCache.index;
+  const r = view.topology.reference;
   let best = 0, distance = Infinity;
   for (let i = 0; i < view.topology.n; ++i) {
-    const d = (x[3 * i] - p.x) ** 2 + (x[3 * i + 1] - p.y) ** 2 + (x[3 * i + 2] - p.z) ** 2;
+    const d = (r[3 * i] - x) ** 2 + (r[3 * i + 1] - y) ** 2 + (r[3 * i + 2] - z) ** 2;
     if (d < distance) { distance = d; best = i; }
   }
+  Object.assign(nearestCache, {key: key, topology: view.topology, index: best});
   return best;
 }
 

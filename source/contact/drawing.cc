@@ -5,24 +5,20 @@
 
 namespace tissuefem::contact::drawing
 {
-  namespace
+  std::pair<Tensor<1, 3>, Tensor<1, 3>>
+  tangent_frame(const Tensor<1, 3> &axis)
   {
-    /// Two unit vectors that make a right-handed frame with @p axis.
-    std::pair<Tensor<1, 3>, Tensor<1, 3>>
-    frame(const Tensor<1, 3> &axis)
-    {
-      // Start from the coordinate direction farthest from the axis.
-      Tensor<1, 3> e;
-      unsigned int least = 0;
-      for (unsigned int d = 1; d < 3; ++d)
-        if (std::abs(axis[d]) < std::abs(axis[least]))
-          least = d;
-      e[least]           = 1;
-      Tensor<1, 3> first = e - (e * axis) * axis;
-      first /= first.norm();
-      return {first, cross_product_3d(axis, first)};
-    }
-  } // namespace
+    // Start from the coordinate direction farthest from the axis.
+    Tensor<1, 3> e;
+    unsigned int least = 0;
+    for (unsigned int d = 1; d < 3; ++d)
+      if (std::abs(axis[d]) < std::abs(axis[least]))
+        least = d;
+    e[least]           = 1;
+    Tensor<1, 3> first = e - (e * axis) * axis;
+    first /= first.norm();
+    return {first, cross_product_3d(axis, first)};
+  }
 
 
   template <int dim>
@@ -35,7 +31,7 @@ namespace tissuefem::contact::drawing
     if constexpr (dim == 3)
       {
         // Poles once, every other profile point on a ring.
-        const auto [a, b]        = frame(axis);
+        const auto [a, b]        = tangent_frame(axis);
         const unsigned int rings = profile.size() - 2;
         result.vertices.push_back(origin + profile.front().first * axis);
         for (unsigned int k = 1; k + 1 < profile.size(); ++k)

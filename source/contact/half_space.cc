@@ -71,16 +71,12 @@ namespace tissuefem::contact
       {
         // A square of the plane, seen from outside (the tissue's side):
         // (a, b, normal) right-handed.
-        Tensor<1, 3> a;
-        a[std::abs(normal[0]) < 0.9 ? 0 : 1] = 1;
-        a -= (a * normal) * normal;
-        a /= a.norm();
-        const Tensor<1, 3> b = cross_product_3d(normal, a);
-        result.vertices      = {foot - h * a - h * b,
-                                foot + h * a - h * b,
-                                foot + h * a + h * b,
-                                foot - h * a + h * b};
-        result.triangles     = {0, 1, 2, 0, 2, 3};
+        const auto [a, b] = drawing::tangent_frame(normal);
+        result.vertices   = {foot - h * a - h * b,
+                             foot + h * a - h * b,
+                             foot + h * a + h * b,
+                             foot - h * a + h * b};
+        result.triangles  = {0, 1, 2, 0, 2, 3};
       }
     (void)foot, (void)h;
     return result;

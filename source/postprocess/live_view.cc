@@ -152,12 +152,11 @@ namespace tissuefem::postprocess
     field_names = {"displacement", "J", "von Mises"};
     if (c.scene.obstacle_contact)
       field_names.push_back("contact pressure");
-    const auto tool = c.scene.tools.find("contact");
-    obstacles       = std::make_unique<output::ObstacleView<dim>>(
-      c.scene.obstacle_contact.get(),
-      tool == c.scene.tools.end()
-              ? nullptr
-              : dynamic_cast<const tool::ContactTool<dim> *>(tool->second.get()));
+    if (const auto tool = c.scene.tools.find("contact");
+        tool != c.scene.tools.end())
+      contact_tool = dynamic_cast<tool::ContactTool<dim> *>(tool->second.get());
+    obstacles = std::make_unique<output::ObstacleView<dim>>(
+      c.scene.obstacle_contact.get(), contact_tool);
     // A new mesh needs a new surface; the next frame sends it.
     mesh_changed = c.scene.triangulation.signals.any_change.connect(
       [this]() { topology_sent = false; });
@@ -377,15 +376,12 @@ namespace tissuefem::postprocess
       return verb + " needs three numbers";
     if (verb == "tool")
       {
-        const auto &tools = this->context->scene.tools;
-        const auto  found = tools.find("contact");
-        if (found == tools.end())
+        if (!contact_tool)
           return "the scene has no contact tool";
         Tensor<1, dim> offset;
         for (unsigned int d = 0; d < dim; ++d)
           offset[d] = x[d];
-        return static_cast<tool::ContactTool<dim> &>(*found->second)
-          .request_move(offset);
+        return contact_tool->request_move(offset);
       }
     tool::MouseGrasp<dim> *mouse = this->mouse();
     if (!mouse)

@@ -4,7 +4,6 @@
 #include <tissuefem/base/parallel.h>
 #include <tissuefem/tool/contact_tool.h>
 
-#include <cmath>
 #include <iomanip>
 #include <sstream>
 
@@ -115,11 +114,8 @@ namespace tissuefem::tool
   {
     if (!mouse)
       return "the contact tool follows its live device";
-    for (unsigned int d = 0; d < dim; ++d)
-      if (!std::isfinite(offset[d]))
-        return "tool offset is not finite";
-    if (offset.norm() > diameter)
-      return "tool offset farther than the body's diameter";
+    if (std::string why = motion->refusal(offset, "tool offset"); !why.empty())
+      return why;
     asked_offset = offset;
     return {};
   }
@@ -141,7 +137,7 @@ namespace tissuefem::tool
                             const double       body_diameter)
   {
     haptic.connect(directory, body_diameter);
-    diameter = body_diameter;
+    motion->scale(body_diameter);
   }
 
 
@@ -154,7 +150,7 @@ namespace tissuefem::tool
         const Tensor<1, dim> target
           = Utilities::MPI::broadcast(parallel_tools::communicator(),
                                       asked_offset);
-        motion->advance(time, target, 0.1 * diameter);
+        motion->advance(time, target);
       }
     return haptic.synchronize(time, table);
   }

@@ -84,6 +84,7 @@ namespace tissuefem::tool
   MouseGrasp<dim>::connect(const std::string &, const double body_diameter)
   {
     diameter = body_diameter;
+    motion.scale(diameter);
     if (radius == 0)
       radius = 0.03 * diameter;
     bounds = GridTools::compute_bounding_box(mesh);
@@ -110,11 +111,8 @@ namespace tissuefem::tool
   std::string
   MouseGrasp<dim>::request_drag(const Tensor<1, dim> &displacement)
   {
-    for (unsigned int d = 0; d < dim; ++d)
-      if (!std::isfinite(displacement[d]))
-        return "drag is not finite";
-    if (displacement.norm() > diameter)
-      return "drag farther than the body's diameter";
+    if (std::string why = motion.refusal(displacement, "drag"); !why.empty())
+      return why;
     asked_drag = displacement;
     return {};
   }
@@ -165,8 +163,7 @@ namespace tissuefem::tool
       release_due = held || grasp_due;
     for (unsigned int d = 0; d < dim; ++d)
       target[d] = shared[2 + dim + d];
-    // Towards the target by at most a tenth of the diameter this step.
-    motion.advance(time, target, 0.1 * diameter);
+    motion.advance(time, target);
     return true;
   }
 

@@ -1,7 +1,31 @@
 #include <tissuefem/tool/mouse_motion.h>
 
+#include <cmath>
+
 namespace tissuefem::tool
 {
+  template <int dim>
+  void
+  MouseMotion<dim>::scale(const double body_diameter)
+  {
+    diameter = body_diameter;
+  }
+
+
+  template <int dim>
+  std::string
+  MouseMotion<dim>::refusal(const Tensor<1, dim> &target,
+                            const std::string    &what) const
+  {
+    for (unsigned int d = 0; d < dim; ++d)
+      if (!std::isfinite(target[d]))
+        return what + " is not finite";
+    if (target.norm() > diameter)
+      return what + " farther than the body's diameter";
+    return {};
+  }
+
+
   template <int dim>
   void
   MouseMotion<dim>::reset(const Tensor<1, dim> &at)
@@ -12,14 +36,13 @@ namespace tissuefem::tool
 
   template <int dim>
   void
-  MouseMotion<dim>::advance(const double          time,
-                            const Tensor<1, dim> &target,
-                            const double          largest_move)
+  MouseMotion<dim>::advance(const double time, const Tensor<1, dim> &target)
   {
-    t0                   = t1;
-    t1                   = time;
-    d0                   = d1;
-    Tensor<1, dim> delta = target - d0;
+    const double largest_move = 0.1 * diameter;
+    t0                        = t1;
+    t1                        = time;
+    d0                        = d1;
+    Tensor<1, dim> delta      = target - d0;
     if (delta.norm() > largest_move)
       delta *= largest_move / delta.norm();
     d1 = d0 + delta;

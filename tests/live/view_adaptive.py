@@ -45,10 +45,7 @@ def lateral(t):
     return 0.5 * (lo + hi)
 
 
-run, host, port = wc.start_run(exe, scene, work, [
-    "Output/Live view/Port=0", "Output/Live view/Wait for page=60",
-    "Output/Live view/Pace=as fast as possible",
-    "Output/Live view/Start paused=true"])
+run, host, port = wc.start_run(exe, scene, work, wc.PAUSED_VIEW)
 # One step per frame seen ('step' after each): every state is checked.
 topologies, frames, meshes = [], 0, set()
 try:

@@ -77,10 +77,7 @@ def ws_abuse(frames, expect_close):
         return True
 
 
-run, host, port = wc.start_run(exe, scene, work, [
-    "Output/Live view/Port=0", "Output/Live view/Wait for page=60",
-    "Output/Live view/Start paused=true",
-    "Output/Live view/Pace=as fast as possible",
+run, host, port = wc.start_run(exe, scene, work, wc.PAUSED_VIEW + [
     "Time integration/Time step=0.05", "Output/Summary interval=20"])
 try:
     driver = wc.WebSocket(host, port)

@@ -28,10 +28,7 @@ check = wc.Checks()
 
 run, host, port = wc.start_run(exe, scene, work, [
     "Output/Directory=results", "Output/VTU/Interval=0",
-    "Time integration/End time=0.001",
-    "Output/Live view/Port=0", "Output/Live view/Wait for page=60",
-    "Output/Live view/Start paused=true",
-    "Output/Live view/Pace=as fast as possible"])
+    "Time integration/End time=0.001"] + wc.PAUSED_VIEW)
 try:
     page = wc.Page(host, port)
     page.until_step(0)
@@ -40,8 +37,7 @@ try:
     for k in range(1, 4):
         page.send("step")
         page.until_step(k)
-    page.send("play")
-    page.until(lambda: page.of_type("end"))
+    page.play_to_end()
     page.close()
     check(run.wait(timeout=60) == 0, "tissuefem exited 0")
 finally:

@@ -35,11 +35,8 @@ shutil.rmtree(work, ignore_errors=True)
 check = wc.Checks()
 
 
-run, host, port = wc.start_run(exe, scene, work, [
+run, host, port = wc.start_run(exe, scene, work, wc.PAUSED_VIEW + [
     "Boundary conditions/Dirichlet=0: x: 0 | 2: y: 0 | 4: z: 0",
-    "Output/Live view/Port=0", "Output/Live view/Wait for page=60",
-    "Output/Live view/Start paused=true",
-    "Output/Live view/Pace=as fast as possible",
     "Mouse/Grasp radius=0.01",
     "Time integration/Time step=0.1", "Output/Summary interval=1"],
     processes)

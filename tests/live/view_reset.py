@@ -29,10 +29,7 @@ processes = int(sys.argv[5]) if len(sys.argv) > 5 else 1
 shutil.rmtree(work, ignore_errors=True)
 check = wc.Checks()
 
-run, host, port = wc.start_run(exe, scene, work, [
-    "Output/Live view/Port=0", "Output/Live view/Wait for page=60",
-    "Output/Live view/Start paused=true",
-    "Output/Live view/Pace=as fast as possible",
+run, host, port = wc.start_run(exe, scene, work, wc.PAUSED_VIEW + [
     "Output/Live view/Frame rate=240",
     "Time integration/Time step=0.05", "Output/Summary interval=20"],
     processes)
@@ -80,8 +77,7 @@ try:
     check(first["time"] == 0 and max(abs(x) for x in first["u"]) == 0
           and first["stored"] == 0 and not first["holding"],
           "step 0 at t = 0: no displacement, no energy, no grasp")
-    again.send("play")
-    again.until(lambda: bool(again.of_type("end")))
+    again.play_to_end()
     again.close()
     check(run.wait(timeout=60) == 0, "tissuefem exited 0")
 finally:

@@ -90,10 +90,7 @@ def next_of(ws, kind, timeout=20):
     raise TimeoutError("no " + kind)
 
 
-run, host, port = wc.start_run(exe, scene, work, [
-    "Output/Live view/Port=0", "Output/Live view/Wait for page=60",
-    "Output/Live view/Start paused=true",
-    "Output/Live view/Pace=as fast as possible",
+run, host, port = wc.start_run(exe, scene, work, wc.PAUSED_VIEW + [
     "Output/Live view/Frame rate=240",
     "Time integration/Time step=0.05", "Output/Summary interval=20"],
     processes)

@@ -38,10 +38,7 @@ shutil.rmtree(work, ignore_errors=True)
 check = wc.Checks()
 
 run, host, port = wc.start_run(exe, scene, work, [
-    "Contact/Obstacle 1/Motion=0; 0",
-    "Output/Live view/Port=0", "Output/Live view/Wait for page=60",
-    "Output/Live view/Start paused=true",
-    "Output/Live view/Pace=as fast as possible"], processes)
+    "Contact/Obstacle 1/Motion=0; 0"] + wc.PAUSED_VIEW, processes)
 try:
     page = wc.Page(host, port)
     page.until_step(0)

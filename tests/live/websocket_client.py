@@ -29,6 +29,14 @@ def lame(E, nu):
     return E * nu / ((1 + nu) * (1 - 2 * nu)), E / (2 * (1 + nu))
 
 
+# The live view on any free port, waiting for a page and paused, stepping
+# as fast as it can: how the scripted pages start a run (settings for
+# start_run).
+PAUSED_VIEW = ["Output/Live view/Port=0", "Output/Live view/Wait for page=60",
+               "Output/Live view/Start paused=true",
+               "Output/Live view/Pace=as fast as possible"]
+
+
 def start_run(exe, scene, work, settings, processes=1):
     """Starts tissuefem on SCENE in WORK with --set SETTINGS (on PROCESSES
     MPI processes); returns the process and the page's address (from
@@ -235,6 +243,11 @@ class Page:
 
     def send(self, text):
         self.socket.send_text(text)
+
+    def play_to_end(self):
+        """Plays the run and reads until it says it ended."""
+        self.send("play")
+        self.until(lambda: self.of_type("end"))
 
     def close(self):
         self.socket.close()

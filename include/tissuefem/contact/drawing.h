@@ -42,6 +42,11 @@ namespace tissuefem::contact
             const Point<dim>                             &origin,
             const Tensor<1, dim>                         &axis);
 
+    /// Two unit vectors a, b that make (a, b, @p axis) a right-handed
+    /// orthonormal frame (@p axis a unit vector).
+    std::pair<Tensor<1, 3>, Tensor<1, 3>>
+    tangent_frame(const Tensor<1, 3> &axis);
+
     /// The profile of a capsule of radius @p radius about the segment
     /// [0, length] of its axis (a ball for length 0): a half circle, the
     /// shaft, a half circle.

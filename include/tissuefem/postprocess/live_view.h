@@ -17,7 +17,9 @@ namespace tissuefem::tool
 {
   template <int dim>
   class MouseGrasp;
-}
+  template <int dim>
+  class ContactTool;
+} // namespace tissuefem::tool
 
 namespace tissuefem::postprocess
 {
@@ -107,10 +109,12 @@ namespace tissuefem::postprocess
     std::unique_ptr<output::ViewServer>           server;
     std::unique_ptr<output::BoundarySurface<dim>> surface;
     std::unique_ptr<output::ObstacleView<dim>>    obstacles;
-    boost::signals2::scoped_connection            mesh_changed;
-    bool                                          topology_sent = false;
-    unsigned int                                  frames        = 0;
-    std::chrono::steady_clock::time_point         last_frame;
+    /// The scene's contact tool (null: none), which 'tool' commands move.
+    tool::ContactTool<dim>               *contact_tool = nullptr;
+    boost::signals2::scoped_connection    mesh_changed;
+    bool                                  topology_sent = false;
+    unsigned int                          frames        = 0;
+    std::chrono::steady_clock::time_point last_frame;
     /// Pacing: wall clock and simulated time when pacing started.
     std::chrono::steady_clock::time_point pace_wall_origin;
     double                                pace_time_origin = 0;

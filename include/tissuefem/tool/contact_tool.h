@@ -145,13 +145,11 @@ namespace tissuefem::tool
     unsigned int         steps_touching = 0, steps = 0;
     /// The live view's mouse: whether it may move the tool, the offset it
     /// asked (process 0) and the offset's motion (shared with the
-    /// obstacle's follower, which may outlive the tool); the body's
-    /// diameter.
+    /// obstacle's follower, which may outlive the tool).
     bool                              mouse = false;
     Tensor<1, dim>                    asked_offset;
     std::shared_ptr<MouseMotion<dim>> motion
       = std::make_shared<MouseMotion<dim>>();
-    double diameter = 1;
     /// Where its own motion starts (with the mouse: pose(0) moves with it).
     Tensor<1, dim> start;
   };
