@@ -1,6 +1,6 @@
 #!/bin/bash
-# What the locking-free linear simplex ('Materials/Formulation = nodal
-# dilatation') costs against plain P1 ('displacement') on the same mesh, in
+# What the locking-free linear simplices ('Materials/Formulation = nodal
+# dilatation' and 'nodal pressure') cost against plain P1 ('displacement') on the same mesh, in
 # one run of this script, for the scenes of issue 30's target (at most 2
 # times plain P1):
 #   liver  parameters/liver_incompressible.prm with P1 (SOFA's liver, 596
@@ -14,7 +14,9 @@
 # P1's matrix as L U and the nodal dilatation's symmetric saddle-point
 # system as L D L^T: 'Linear solver/MUMPS symmetric factorization =
 # automatic'). Then the nodal dilatation again with L U ('... = false') and
-# its ratio to plain P1. Whole runs, one process, the machine's threads.
+# its ratio to plain P1; and the four-unknown element ('Formulation = nodal
+# pressure', MUMPS L D L^T) and its ratio. Whole runs, one process, the
+# machine's threads.
 #
 # Usage (from the repository top, after building):
 #   bash benchmarks/nodal_dilatation_cost.sh [path/to/tissuefem]
@@ -61,4 +63,7 @@ for scene in liver box; do
   ratio_row "ratio (target 2)" nodal
   printf '%-6s %-18s %10s %10s %7s %14s %14s %8s\n' "$scene" "P1-nodal L U" "${lu[@]}"
   ratio_row "ratio L U / P1" lu
+  read -r -a pressure < <(measure "${settings[@]}" --set "Materials/Formulation=nodal pressure")
+  printf '%-6s %-18s %10s %10s %7s %14s %14s %8s\n' "$scene" "P1-pressure" "${pressure[@]}"
+  ratio_row "ratio (target 2)" pressure
 done

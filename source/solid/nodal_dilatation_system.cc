@@ -5,35 +5,14 @@
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 #include <deal.II/lac/vector.h>
 
+#include <tissuefem/solid/augmented_system.h>
 #include <tissuefem/solid/matrix_rows.h>
 #include <tissuefem/solid/nodal_dilatation_system.h>
 
 #include <algorithm>
-#include <cstring>
 
 namespace tissuefem::solid
 {
-  namespace
-  {
-    /// @p from's lines (Dirichlet values, no entries) on the augmented
-    /// unknowns, whose displacement part is numbered as @p from's.
-    void
-    copy_lines(const AffineConstraints<double> &from,
-               const IndexSet                  &relevant,
-               AffineConstraints<double>       &to)
-    {
-      to.clear();
-      to.reinit(relevant);
-      for (const auto &line : from.get_lines())
-        if (relevant.is_element(line.index))
-          {
-            AssertThrow(line.entries.empty(), ExcInternalError());
-            to.add_line(line.index);
-            to.set_inhomogeneity(line.index, line.inhomogeneity);
-          }
-      to.close();
-    }
-  } // namespace
 
 
   template <int dim>
@@ -109,7 +88,7 @@ namespace tissuefem::solid
       }
 
     // The couplings of each owned cell's displacement, s and p.
-    copy_lines(discretization.constraints, relevant, augmented_rows);
+    copy_dirichlet_lines(discretization.constraints, relevant, augmented_rows);
     TrilinosWrappers::SparsityPattern    sparsity(owned,
                                                owned,
                                                relevant,
@@ -214,7 +193,7 @@ namespace tissuefem::solid
     const auto        &cells = nodal.cells;
     const unsigned int n     = cells.size();
     if (jacobian)
-      copy_lines(rows, relevant, augmented_rows);
+      copy_dirichlet_lines(rows, relevant, augmented_rows);
 
     // F, J, J F^{-T} of every cell here, and the vertices' dilatations.
     std::vector<Tensor<2, dim>> F(n), cofactor(n);
@@ -287,64 +266,7 @@ namespace tissuefem::solid
   void
   NodalDilatationSystem<dim>::finish(const MatrixType *uu, VectorType &residual)
   {
-    matrix.compress(VectorOperation::add);
-    rhs.compress(VectorOperation::add);
-    if (uu)
-      add_displacement_block(*uu);
-    // The displacement rows come first among the owned unknowns here and
-    // are all of @p residual's.
-    const unsigned int n_owned_u = residual.locally_owned_size();
-    double            *into      = residual.trilinos_vector()[0];
-    const double      *elastic   = rhs.trilinos_vector()[0];
-    for (unsigned int i = 0; i < n_owned_u; ++i)
-      into[i] += elastic[i];
-  }
-
-
-  template <int dim>
-  void
-  NodalDilatationSystem<dim>::add_displacement_block(const MatrixType &uu)
-  {
-    const Epetra_CrsMatrix &from = uu.trilinos_matrix();
-    if (uu_entry.empty())
-      map_displacement_block(uu);
-    for (int row = 0, k = 0; row < from.NumMyRows(); ++row)
-      {
-        int     length;
-        double *values;
-        int    *local;
-        from.ExtractMyRowView(row, length, values, local);
-        double *into = direct.row_values[uu_row[row]];
-        for (int j = 0; j < length; ++j, ++k)
-          into[uu_entry[k]] += values[j];
-      }
-  }
-
-
-  template <int dim>
-  void
-  NodalDilatationSystem<dim>::map_displacement_block(const MatrixType &uu)
-  {
-    // Row r of @p uu (an owned displacement dof) is row uu_row[r] here;
-    // its entries are among that row's.
-    const Epetra_CrsMatrix &from = uu.trilinos_matrix();
-    const Epetra_CrsMatrix &to   = matrix.trilinos_matrix();
-    uu_row.resize(from.NumMyRows());
-    uu_entry.clear();
-    for (int row = 0; row < from.NumMyRows(); ++row)
-      {
-        const auto global = TrilinosWrappers::global_row_index(from, row);
-        uu_row[row]       = to.RowMap().LID(global);
-        int     length;
-        double *values;
-        int    *local;
-        from.ExtractMyRowView(row, length, values, local);
-        for (int j = 0; j < length; ++j)
-          uu_entry.push_back(entry_in_row(
-            matrix,
-            uu_row[row],
-            TrilinosWrappers::global_column_index(from, local[j])));
-      }
+    finish_augmented(matrix, rhs, uu, uu_row, uu_entry, residual);
   }
 
 
@@ -355,25 +277,7 @@ namespace tissuefem::solid
                                     const VectorType      &b,
                                     const bool             refactorize)
   {
-    VectorType         B(owned, parallel_tools::communicator());
-    VectorType         X(owned, parallel_tools::communicator());
-    const unsigned int n_owned_u = b.locally_owned_size();
-    double            *into      = B.trilinos_vector()[0];
-    const double      *lifted    = rhs.trilinos_vector()[0];
-    std::memcpy(into, b.trilinos_vector()[0], n_owned_u * sizeof(double));
-    // b = -R: the rows of s and p take the lifting's terms negated too,
-    // once (a later solve with a kept factorization has none).
-    AssertDimension(static_cast<unsigned int>(x.trilinos_vector().MyLength()),
-                    n_owned_u);
-    for (unsigned int i = n_owned_u; i < B.locally_owned_size(); ++i)
-      into[i] = -lifted[i];
-    solver.solve(matrix, X, B, refactorize);
-    double *rest = rhs.trilinos_vector()[0];
-    for (unsigned int i = n_owned_u; i < B.locally_owned_size(); ++i)
-      rest[i] = 0;
-    std::memcpy(x.trilinos_vector()[0],
-                X.trilinos_vector()[0],
-                n_owned_u * sizeof(double));
+    solve_augmented(solver, matrix, rhs, owned, x, b, refactorize);
   }
 
 

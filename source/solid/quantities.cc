@@ -33,8 +33,12 @@ namespace tissuefem::solid
         const auto &material = materials.material(cell->material_id());
         if (J <= 0 && !material.admits_inversion())
           return;
-        const Tensor<2, dim> P
+        Tensor<2, dim> P
           = material.stress(F, fibres.at(cell->active_cell_index(), q));
+        // The formulation's own pressure, where it has one.
+        double psi = 0;
+        if (deformation)
+          deformation->add_own_terms(cell, F, psi, &P);
         const Tensor<2, dim> sigma = (J != 0 ? 1. / J : 0.) * P * transpose(F);
         const double         mean  = trace(sigma) / dim;
         Tensor<2, dim>       deviator = sigma;

@@ -139,6 +139,7 @@ namespace tissuefem::solid
                                            solvers::LinearSolver &solver)
   {
     const bool wanted = only && solver.direct();
+    element->check_solving(wanted);
     if (wanted == solves_only_through_operators)
       return;
     solves_only_through_operators = wanted;

@@ -34,8 +34,9 @@ namespace tissuefem::solid
     // and the displacement matrix only the force contributions' terms
     // (without any, it is neither cleared nor added: 0.8 ms a step on
     // SOFA's liver).
-    const bool loads_in_system = element->has_system() && request.jacobian
-                                 && request.internal && !request.cells;
+    const bool loads_in_system = element->system_takes_loads()
+                                 && request.jacobian && request.internal
+                                 && !request.cells;
     const bool uu_block
       = request.jacobian
         && !(loads_in_system

@@ -226,15 +226,17 @@ namespace tissuefem::solid
             energy = std::numeric_limits<double>::infinity();
             break;
           }
-        if (n_e == 1)
-          energy += material.energy_density(
-                      F[0], fibre_field.at(cell->active_cell_index(), 0))
-                    * std::accumulate(cache.JxW(c), cache.JxW(c) + n_q, 0.);
-        else
-          for (unsigned int q = 0; q < n_q; ++q)
-            energy += material.energy_density(
-                        F[q], fibre_field.at(cell->active_cell_index(), q))
-                      * cache.JxW(c)[q];
+        for (unsigned int q = 0; q < n_e; ++q)
+          {
+            double psi = material.energy_density(
+              F[q], fibre_field.at(cell->active_cell_index(), q));
+            deformation->add_own_terms(cell, F[q], psi, nullptr);
+            energy
+              += psi
+                 * (n_e == 1
+                      ? std::accumulate(cache.JxW(c), cache.JxW(c) + n_q, 0.)
+                      : cache.JxW(c)[q]);
+          }
       }
     return Utilities::MPI::sum(energy, parallel_tools::communicator());
   }

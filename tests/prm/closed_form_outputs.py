@@ -72,6 +72,11 @@ write("uniaxial_stretch_neo_hookean", 1, [P_xx, 0, 0], W)
 # The same stretch on P1 tetrahedra (2 x 2 x 2 cubes, 5 tetrahedra each)
 # with the nodal dilatation: homogeneous, so Fbar = F.
 write("uniaxial_stretch_nodal_dilatation", 1, [P_xx, 0, 0], W, cells=40)
+# And with one pressure per vertex: homogeneous, so the pressure solving
+# A p = b is lambda log J at every vertex (solid/nodal_pressure.h).
+for name in ("uniaxial_stretch_nodal_pressure",
+             "uniaxial_stretch_nodal_pressure.mpirun=2"):
+    write(name, 1, [P_xx, 0, 0], W, cells=40)
 
 # Simple shear F = I + g e_x (x) e_y, g = 0.3; reaction on y = 1 is P e_y.
 g = 0.3

@@ -54,6 +54,22 @@ namespace tissuefem::materials
   };
 
   /**
+   * The part of a model's energy that locks as nu -> 1/2: Psi(F) =
+   * Psi_rest(F) + lambda/2 g(J)^2, with Psi_rest free of lambda (Teran eq
+   * 2.8a's log^2 J term). Mixed formulations (solid/formulations/
+   * nodal_pressure.h) replace it by a pressure of their own. lambda = 0:
+   * the model has no such part.
+   */
+  struct VolumetricPart
+  {
+    /// lambda and the shear modulus mu (stress units).
+    double lambda = 0;
+    double mu     = 0;
+    /// g(J), g'(J), g''(J).
+    double g = 0, dg = 0, d2g = 0;
+  };
+
+  /**
    * A hyperelastic material: an energy density Psi(F; a) per unit reference
    * volume, its first Piola-Kirchhoff stress P = dPsi/dF and the tangent
    * A = dP/dF, with A_ijkl = d P_ij / d F_kl. The unit vector a is the
@@ -158,6 +174,15 @@ namespace tissuefem::materials
     /// Whether the energy is finite for det F <= 0 (inverted elements).
     virtual bool
     admits_inversion() const = 0;
+
+    /// The volumetric part at J = det F, where the model has one (else
+    /// lambda = 0).
+    virtual VolumetricPart
+    volumetric_part(const double J) const
+    {
+      (void)J;
+      return {};
+    }
   };
 
   template <int dim>

@@ -123,6 +123,17 @@ namespace tissuefem::materials
       return Volume::defined_for_inversion;
     }
 
+    /// lambda/2 g(J)^2.
+    VolumetricPart
+    volumetric_part(const double J) const override
+    {
+      return {lambda,
+              mu,
+              Volume::value(J),
+              Volume::first_derivative(J),
+              Volume::second_derivative(J)};
+    }
+
   protected:
     /**
      * P = mu F + (lambda g - mu) g' cof F and

@@ -79,6 +79,9 @@ namespace tissuefem::solid
     /// Assembles the same tangent in a sparser form from the cells.
     template <int>
     friend class NodalDilatationSystem;
+    /// Uses the cells alone.
+    template <int>
+    friend class NodalPressure;
 
     struct Cell
     {

@@ -168,14 +168,6 @@ namespace tissuefem::solid
     void
     build_direct_access(const AffineConstraints<double> &constraints);
 
-    /// Fills uu_row and uu_entry for the layout of @p uu.
-    void
-    map_displacement_block(const MatrixType &uu);
-
-    /// Adds the entries of @p uu to the system's displacement block.
-    void
-    add_displacement_block(const MatrixType &uu);
-
     /// F, J and J F^{-T} of every cell here for the ghosted @p u, in
     /// parallel, reading @p u through ghost_index.
     void
@@ -238,7 +230,7 @@ namespace tissuefem::solid
     } direct;
     /// Per cell and vertex, the local index of pi_b in @p pressure.
     std::vector<std::array<int, dim + 1>> pressure_entry;
-    /// Where the P1 matrix's rows and entries lie here (finish()).
+    /// Where the P1 matrix's rows and entries lie here (finish(), add_block()).
     std::vector<int> uu_row, uu_entry;
     /// Per cell of @p nodal and dof, its index in the ghosted vectors
     /// (Trilinos' local index, the same for every ghosted vector of the

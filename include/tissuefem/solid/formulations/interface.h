@@ -139,6 +139,21 @@ namespace tissuefem::solid::formulations
       (void)n;
       return true;
     }
+
+    /// Where the formulation adds terms of its own to the model's energy
+    /// density @p psi and stress @p P at the cell's F (a pressure of its
+    /// own: NodalPressure), adds them; @p P may be null.
+    virtual void
+    add_own_terms(const typename DoFHandler<dim>::active_cell_iterator &cell,
+                  const Tensor<2, dim>                                 &F,
+                  double                                               &psi,
+                  Tensor<2, dim>                                       *P) const
+    {
+      (void)cell;
+      (void)F;
+      (void)psi;
+      (void)P;
+    }
   };
 
 
@@ -286,11 +301,30 @@ namespace tissuefem::solid::formulations
       (void)sparsity;
     }
 
+    /// Throws InputError where the formulation cannot solve its Newton
+    /// systems as the integrator asks (@p through_operators: only through
+    /// solve_system() with a direct solver); called when an integrator
+    /// says how it solves, before its first step.
+    virtual void
+    check_solving(const bool through_operators) const
+    {
+      (void)through_operators;
+    }
+
     /// Whether Jacobians go into the formulation's own system.
     virtual bool
     has_system() const
     {
       return false;
+    }
+
+    /// Whether the own system takes the inertia and gravity into its cell
+    /// blocks (the lean path then leaves them to add_patch_terms()); else
+    /// they come with the displacement block of finish_system().
+    virtual bool
+    system_takes_loads() const
+    {
+      return has_system();
     }
 
     /// The own system's matrix (its displacement rows hold the

@@ -1,0 +1,443 @@
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/parallel.h>
+#include <deal.II/lac/trilinos_index_access.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
+
+#include <tissuefem/base/input_error.h>
+#include <tissuefem/solid/augmented_system.h>
+#include <tissuefem/solid/nodal_pressure.h>
+
+#include <algorithm>
+#include <cstring>
+#include <utility>
+
+namespace tissuefem::solid
+{
+  namespace
+  {
+    /// The P1 mass of a simplex of volume @p V between its nodes a and b,
+    /// and the same with the shape functions' cell means (Pi_0 N_a = 1 /
+    /// (d + 1)): the stabilization's M - M0 (Dohrmann and Bochev 2004,
+    /// eq 3.4).
+    template <int dim>
+    double
+    pressure_entry(const double V,
+                   const bool   same,
+                   const double lambda,
+                   const double mu,
+                   const double alpha)
+    {
+      const double m  = V * (same ? 2. : 1.) / ((dim + 1) * (dim + 2));
+      const double m0 = V / ((dim + 1) * (dim + 1));
+      return m / lambda + alpha * (m - m0) / mu;
+    }
+  } // namespace
+
+
+  template <int dim>
+  NodalPressure<dim>::NodalPressure(
+    const Discretization<dim>         &discretization,
+    const NodalDilatation<dim>        &cells,
+    const materials::MaterialSet<dim> &materials,
+    const double                       stabilization)
+      : nodal(cells)
+      , stabilization(stabilization)
+      , control(1, 0.)
+  {
+    const MPI_Comm comm = parallel_tools::communicator();
+    n_u                 = discretization.n_dofs();
+    n_vertices          = n_u / dim;
+    n_active_cells
+      = discretization.dof_handler.get_triangulation().n_active_cells();
+    const auto vertices_of = [&](const IndexSet &dofs) {
+      IndexSet result(n_vertices);
+      for (const auto i : dofs)
+        if (i % dim == 0)
+          result.add_index(i / dim);
+      result.compress();
+      return result;
+    };
+    owned_p    = vertices_of(discretization.locally_owned);
+    relevant_p = vertices_of(discretization.locally_relevant);
+
+    for (unsigned int g = 0; g < nodal.cells.size(); ++g)
+      if (nodal.cells[g].owned)
+        {
+          const auto &cell = nodal.cells[g];
+          owned_cells.push_back(g);
+          std::array<types::global_dof_index, dim + 1> v;
+          for (unsigned int i = 0; i < cell.dofs.size(); ++i)
+            if (cell.node_component[i].second == 0)
+              v[cell.node_component[i].first] = cell.dofs[i] / dim;
+          vertex.push_back(v);
+          const auto part
+            = materials.material(cell.material_id).volumetric_part(1.);
+          AssertThrow(part.lambda > 0 && part.mu > 0, ExcInternalError());
+          moduli.push_back({part.lambda, part.mu});
+        }
+
+    // A, fixed per mesh: the reference cells' pressure mass and
+    // stabilization.
+    TrilinosWrappers::SparsityPattern sparsity(owned_p,
+                                               owned_p,
+                                               relevant_p,
+                                               comm);
+    for (const auto &v : vertex)
+      for (unsigned int a = 0; a <= dim; ++a)
+        for (unsigned int b = 0; b <= dim; ++b)
+          sparsity.add(v[a], v[b]);
+    sparsity.compress();
+    A.reinit(sparsity);
+    FullMatrix<double>                   local(dim + 1, dim + 1);
+    std::vector<types::global_dof_index> indices(dim + 1);
+    for (unsigned int o = 0; o < owned_cells.size(); ++o)
+      {
+        const double V = nodal.cells[owned_cells[o]].volume;
+        for (unsigned int a = 0; a <= dim; ++a)
+          {
+            indices[a] = vertex[o][a];
+            for (unsigned int b = 0; b <= dim; ++b)
+              local(a, b) = pressure_entry<dim>(
+                V, a == b, moduli[o][0], moduli[o][1], stabilization);
+          }
+        A.add(indices, local);
+      }
+    A.compress(VectorOperation::add);
+    factorization = std::make_unique<TrilinosWrappers::SolverDirect>(
+      control, TrilinosWrappers::SolverDirect::AdditionalData(false));
+    factorization->initialize(A);
+    b.reinit(owned_p, relevant_p, comm, true);
+    p.reinit(owned_p, comm);
+    pressure.reinit(owned_p, relevant_p, comm);
+    F.resize(owned_cells.size());
+    cofactor.resize(owned_cells.size());
+    J.resize(owned_cells.size());
+    pbar.resize(owned_cells.size());
+  }
+
+
+  template <int dim>
+  void
+  NodalPressure<dim>::deformation(const VectorType &u)
+  {
+    parallel::apply_to_subranges(
+      0U,
+      static_cast<unsigned int>(owned_cells.size()),
+      [&](const unsigned int begin, const unsigned int end) {
+        for (unsigned int o = begin; o < end; ++o)
+          {
+            F[o] = nodal.deformation_gradient(nodal.cells[owned_cells[o]], u);
+            J[o] = determinant(F[o]);
+            cofactor[o] = J[o] != 0
+                            ? Tensor<2, dim>(J[o] * transpose(invert(F[o])))
+                            : Tensor<2, dim>();
+          }
+      },
+      256);
+  }
+
+
+  template <int dim>
+  void
+  NodalPressure<dim>::solve_pressures(
+    const materials::MaterialSet<dim> &materials)
+  {
+    // b_i = int N_i g(J) = sum_e V_e g(J_e) / (d + 1) over the cells at i;
+    // where the model is undefined (J <= 0) the cell adds nothing (it is
+    // reported by assemble(), and its energy is infinite).
+    std::vector<types::global_dof_index> where;
+    std::vector<double>                  what;
+    where.reserve(owned_cells.size() * (dim + 1));
+    what.reserve(owned_cells.size() * (dim + 1));
+    for (unsigned int o = 0; o < owned_cells.size(); ++o)
+      {
+        const auto &cell     = nodal.cells[owned_cells[o]];
+        const auto &material = materials.material(cell.material_id);
+        if (!(J[o] > 0) && !material.admits_inversion())
+          continue;
+        const double value
+          = cell.volume * material.volumetric_part(J[o]).g / (dim + 1);
+        for (unsigned int a = 0; a <= dim; ++a)
+          {
+            where.push_back(vertex[o][a]);
+            what.push_back(value);
+          }
+      }
+    b = 0;
+    b.add(where, what);
+    b.compress(VectorOperation::add);
+    // The owned part of b (its ghosts only served the sum).
+    VectorType rhs_p(owned_p, parallel_tools::communicator());
+    std::memcpy(rhs_p.trilinos_vector()[0],
+                b.trilinos_vector()[0],
+                owned_p.n_elements() * sizeof(double));
+    factorization->solve(p, rhs_p);
+    pressure = p;
+    for (unsigned int o = 0; o < owned_cells.size(); ++o)
+      {
+        double sum = 0;
+        for (unsigned int a = 0; a <= dim; ++a)
+          sum += std::as_const(pressure)(vertex[o][a]);
+        pbar[o] = sum / (dim + 1);
+      }
+  }
+
+
+  template <int dim>
+  std::vector<double>
+  NodalPressure<dim>::cell_pressures(
+    const VectorType                  &u,
+    const materials::MaterialSet<dim> &materials)
+  {
+    deformation(u);
+    solve_pressures(materials);
+    std::vector<double> result(n_active_cells, 0.);
+    for (unsigned int o = 0; o < owned_cells.size(); ++o)
+      result[nodal.cells[owned_cells[o]].active_index] = pbar[o];
+    return result;
+  }
+
+
+  template <int dim>
+  void
+  NodalPressure<dim>::add_cell(const unsigned int               o,
+                               const materials::Interface<dim> &material,
+                               const Tensor<1, dim>            &fibre,
+                               const materials::TangentMethod   method,
+                               Vector<double>                  &r,
+                               FullMatrix<double>              *K) const
+  {
+    const auto        &cell = nodal.cells[owned_cells[o]];
+    const auto        &grad = cell.gradient;
+    const unsigned int n_e  = cell.dofs.size();
+    const unsigned int p0   = n_e;
+    const double       V    = cell.volume;
+    const auto         part = material.volumetric_part(J[o]);
+    // The pressure beyond the model's own lambda g: the model's stress plus
+    // (pbar - lambda g) dg/dF is the cell's.
+    const double   s = pbar[o] - part.lambda * part.g;
+    Tensor<2, dim> P;
+    Tensor<4, dim> tangent;
+    if (K)
+      material.stress_and_tangent(F[o], fibre, P, tangent, method);
+    else
+      P = material.stress(F[o], fibre);
+    // a_k = J F^{-T} grad N_k: dJ/du for (node k, component c) is a_k[c].
+    std::array<Tensor<1, dim>, dim + 1> a;
+    for (unsigned int k = 0; k <= dim; ++k)
+      a[k] = cofactor[o] * grad[k];
+    r.reinit(n_e + dim + 1);
+    for (unsigned int i = 0; i < n_e; ++i)
+      {
+        const auto [k, c] = cell.node_component[i];
+        r(i)              = V * (P[c] * grad[k] + s * part.dg * a[k][c]);
+      }
+    if (!K)
+      return;
+    K->reinit(n_e + dim + 1, n_e + dim + 1);
+    const double h = part.d2g * s - part.lambda * part.dg * part.dg;
+    for (unsigned int i = 0; i < n_e; ++i)
+      {
+        const auto [k, c] = cell.node_component[i];
+        for (unsigned int j = 0; j < n_e; ++j)
+          {
+            const auto [l, d] = cell.node_component[j];
+            double value      = 0;
+            for (unsigned int m = 0; m < dim; ++m)
+              for (unsigned int n = 0; n < dim; ++n)
+                value += tangent[c][m][d][n] * grad[k][m] * grad[l][n];
+            // (s g'' - lambda g'^2) dJ dJ + s g' d2J, d2J from the
+            // cofactor's derivative (nodal_dilatation.cc).
+            value += h * a[k][c] * a[l][d];
+            if (J[o] != 0)
+              value
+                += s * part.dg / J[o] * (a[k][c] * a[l][d] - a[l][c] * a[k][d]);
+            (*K)(i, j) = V * value;
+          }
+        // B = db/du: the vertices' share of V g' dJ.
+        for (unsigned int v = 0; v <= dim; ++v)
+          {
+            const double entry = V / (dim + 1) * part.dg * a[k][c];
+            (*K)(p0 + v, i)    = entry;
+            (*K)(i, p0 + v)    = entry;
+          }
+      }
+    for (unsigned int v = 0; v <= dim; ++v)
+      for (unsigned int w = 0; w <= dim; ++w)
+        (*K)(p0 + v, p0 + w) = -pressure_entry<dim>(
+          V, v == w, moduli[o][0], moduli[o][1], stabilization);
+  }
+
+
+  template <int dim>
+  std::vector<std::tuple<unsigned int, double, Point<dim>>>
+  NodalPressure<dim>::assemble(const VectorType                  &u,
+                               const materials::MaterialSet<dim> &materials,
+                               const FibreField<dim>             &fibres,
+                               const AffineConstraints<double>   &rows,
+                               const bool                         inhomogeneous,
+                               const bool                         jacobian,
+                               VectorType                        &residual)
+  {
+    AssertThrow(!jacobian || system_built, ExcInternalError());
+    deformation(u);
+    solve_pressures(materials);
+    if (jacobian)
+      copy_dirichlet_lines(rows, relevant, augmented_rows);
+
+    std::vector<std::tuple<unsigned int, double, Point<dim>>> inverted;
+    const unsigned int n_o = owned_cells.size();
+    const unsigned int n_e
+      = nodal.cells.empty() ? 0 : nodal.cells[0].dofs.size();
+    // Cells computed in parallel by chunks, added in order (the sums do
+    // not depend on the threads).
+    const unsigned int                   chunk = 2048;
+    std::vector<Vector<double>>          r(std::min(n_o, chunk));
+    std::vector<FullMatrix<double>>      K(jacobian ? r.size() : 0);
+    std::vector<bool>                    undefined(r.size());
+    std::vector<types::global_dof_index> indices(n_e + dim + 1);
+    Vector<double>                       r_u(n_e);
+    for (unsigned int first = 0; first < n_o; first += chunk)
+      {
+        const unsigned int last = std::min(n_o, first + chunk);
+        parallel::apply_to_subranges(
+          first,
+          last,
+          [&](const unsigned int begin, const unsigned int end) {
+            for (unsigned int o = begin; o < end; ++o)
+              {
+                const auto &cell     = nodal.cells[owned_cells[o]];
+                const auto &material = materials.material(cell.material_id);
+                undefined[o - first]
+                  = !(J[o] > 0) && !material.admits_inversion();
+                if (!undefined[o - first])
+                  add_cell(o,
+                           material,
+                           fibres.at(cell.active_index, 0),
+                           materials.tangent_method(),
+                           r[o - first],
+                           jacobian ? &K[o - first] : nullptr);
+              }
+          },
+          32);
+        for (unsigned int o = first; o < last; ++o)
+          {
+            const auto &cell = nodal.cells[owned_cells[o]];
+            if (undefined[o - first])
+              {
+                inverted.emplace_back(cell.active_index, J[o], cell.centre);
+                continue;
+              }
+            std::copy(cell.dofs.begin(), cell.dofs.end(), indices.begin());
+            if (jacobian)
+              {
+                for (unsigned int v = 0; v <= dim; ++v)
+                  indices[n_e + v] = n_u + vertex[o][v];
+                augmented_rows.distribute_local_to_global(K[o - first],
+                                                          r[o - first],
+                                                          indices,
+                                                          matrix,
+                                                          rhs,
+                                                          inhomogeneous);
+              }
+            else
+              {
+                std::copy(r[o - first].begin(),
+                          r[o - first].begin() + n_e,
+                          r_u.begin());
+                std::vector<types::global_dof_index> u_indices(
+                  cell.dofs.begin(), cell.dofs.end());
+                rows.distribute_local_to_global(r_u, u_indices, residual);
+              }
+          }
+      }
+    return inverted;
+  }
+
+
+  template <int dim>
+  void
+  NodalPressure<dim>::build_system(const AffineConstraints<double> *constraints)
+  {
+    system_built = false;
+    if (!constraints)
+      return;
+    const MPI_Comm comm    = parallel_tools::communicator();
+    const auto     augment = [&](const IndexSet &vertices) {
+      IndexSet dofs(n_vertices * dim);
+      for (const auto v : vertices)
+        for (unsigned int c = 0; c < dim; ++c)
+          dofs.add_index(v * dim + c);
+      IndexSet result(n_u + n_vertices);
+      result.add_indices(dofs);
+      result.add_indices(vertices, n_u);
+      result.compress();
+      return result;
+    };
+    owned    = augment(owned_p);
+    relevant = augment(relevant_p);
+    copy_dirichlet_lines(*constraints, relevant, augmented_rows);
+    TrilinosWrappers::SparsityPattern    sparsity(owned, owned, relevant, comm);
+    std::vector<types::global_dof_index> indices;
+    for (unsigned int o = 0; o < owned_cells.size(); ++o)
+      {
+        const auto &dofs = nodal.cells[owned_cells[o]].dofs;
+        indices.assign(dofs.begin(), dofs.end());
+        for (unsigned int v = 0; v <= dim; ++v)
+          indices.push_back(n_u + vertex[o][v]);
+        augmented_rows.add_entries_local_to_global(indices, sparsity, false);
+      }
+    sparsity.compress();
+    matrix.reinit(sparsity);
+    rhs.reinit(owned, relevant, comm, true);
+    uu_row.clear();
+    uu_entry.clear();
+    system_built = true;
+  }
+
+
+  template <int dim>
+  void
+  NodalPressure<dim>::clear()
+  {
+    if (!system_built)
+      return;
+    matrix = 0;
+    rhs    = 0;
+  }
+
+
+  template <int dim>
+  void
+  NodalPressure<dim>::finish(const MatrixType *uu, VectorType &residual)
+  {
+    finish_augmented(matrix, rhs, uu, uu_row, uu_entry, residual);
+  }
+
+
+  template <int dim>
+  void
+  NodalPressure<dim>::solve(solvers::LinearSolver &solver,
+                            VectorType            &x,
+                            const VectorType      &rhs_u,
+                            const bool             refactorize)
+  {
+    solve_augmented(solver, matrix, rhs, owned, x, rhs_u, refactorize);
+  }
+
+
+  template <int dim>
+  std::size_t
+  NodalPressure<dim>::memory_consumption() const
+  {
+    return A.memory_consumption() + matrix.memory_consumption()
+           + (F.size() + cofactor.size()) * sizeof(Tensor<2, dim>)
+           + (J.size() + pbar.size()) * sizeof(double)
+           + vertex.size() * sizeof(vertex[0]);
+  }
+
+
+  template class NodalPressure<1>;
+  template class NodalPressure<2>;
+  template class NodalPressure<3>;
+} // namespace tissuefem::solid
