@@ -19,8 +19,12 @@
 # machine's threads.
 #
 # Usage (from the repository top, after building):
-#   bash benchmarks/nodal_dilatation_cost.sh [path/to/tissuefem]
+#   bash benchmarks/nodal_dilatation_cost.sh [path/to/tissuefem] [repeats]
+# Each run is repeated (default 3 times, the formulations interleaved) and
+# every figure is the median over the repeats: the shared machine's load
+# moves single runs by a third.
 source "$(dirname "$0")/common.sh"
+repeats=${2:-3}
 
 measure() { # prm, settings...: prints median p95 newton assembly solve (ms) run (s)
   "$exe" "$@" --set "Output/VTU/Interval=0" --set "Output/Directory=out" \
@@ -29,6 +33,13 @@ measure() { # prm, settings...: prints median p95 newton assembly solve (ms) run
   its=$(value out "newton iterations")
   echo "$(value out "step median") $(value out "step p95") $its $(value out "wall assembly") $(value out "wall solve") $(value out "wall total")" |
     awk -v n="$its" '{printf "%.2f %.2f %d %.2f %.2f %.2f\n", 1e3*$1, 1e3*$2, $3, 1e3*$4/n, 1e3*$5/n, $6}'
+}
+
+medians() { # file of measure() lines: the median of each column
+  /usr/bin/env python3 -c '
+import statistics, sys
+rows = [list(map(float, line.split())) for line in open(sys.argv[1])]
+print(" ".join("%.2f" % statistics.median(c) for c in zip(*rows)))' "$1"
 }
 
 ratio_row() { # label, name of the array divided by plain's
@@ -54,16 +65,24 @@ for scene in liver box; do
               --set "Geometry/Cell type=simplex" --set "Geometry/Subdivisions=30, 8, 8"
               --set "Time integration/Time step=0.01" --set "Time integration/End time=0.1")
   fi
-  read -r -a plain < <(measure "${settings[@]}" --set "Materials/Formulation=displacement")
-  read -r -a nodal < <(measure "${settings[@]}" --set "Materials/Formulation=nodal dilatation")
-  read -r -a lu < <(measure "${settings[@]}" --set "Materials/Formulation=nodal dilatation" \
-    --set "Linear solver/MUMPS symmetric factorization=false")
+  # Repeats interleaved, each figure the median over them.
+  rm -f plain.txt nodal.txt lu.txt pressure.txt
+  for ((k = 0; k < repeats; ++k)); do
+    measure "${settings[@]}" --set "Materials/Formulation=displacement" >> plain.txt
+    measure "${settings[@]}" --set "Materials/Formulation=nodal dilatation" >> nodal.txt
+    measure "${settings[@]}" --set "Materials/Formulation=nodal dilatation" \
+      --set "Linear solver/MUMPS symmetric factorization=false" >> lu.txt
+    measure "${settings[@]}" --set "Materials/Formulation=nodal pressure" >> pressure.txt
+  done
+  read -r -a plain < <(medians plain.txt)
+  read -r -a nodal < <(medians nodal.txt)
+  read -r -a lu < <(medians lu.txt)
+  read -r -a pressure < <(medians pressure.txt)
   printf '%-6s %-18s %10s %10s %7s %14s %14s %8s\n' "$scene" "P1" "${plain[@]}"
   printf '%-6s %-18s %10s %10s %7s %14s %14s %8s\n' "$scene" "P1-nodal" "${nodal[@]}"
   ratio_row "ratio (target 2)" nodal
   printf '%-6s %-18s %10s %10s %7s %14s %14s %8s\n' "$scene" "P1-nodal L U" "${lu[@]}"
   ratio_row "ratio L U / P1" lu
-  read -r -a pressure < <(measure "${settings[@]}" --set "Materials/Formulation=nodal pressure")
   printf '%-6s %-18s %10s %10s %7s %14s %14s %8s\n' "$scene" "P1-pressure" "${pressure[@]}"
   ratio_row "ratio (target 2)" pressure
 done

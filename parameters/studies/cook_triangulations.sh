@@ -12,15 +12,22 @@
 #   P1-nodal            'Materials/Formulation = nodal dilatation' at
 #                       nu = 0.4999; converged answer 6.9347 (FEniCS
 #                       Taylor-Hood, doc/studies.md);
-# and the wall time of the two nu = 0.4999 runs (s). Triangulations:
+#   P1-pressure         'Materials/Formulation = nodal pressure' (one
+#                       pressure per vertex, projection-stabilized, its
+#                       default factor) at nu = 0.4999, same answer;
+# and the wall time of the three nu = 0.4999 runs (s). Triangulations:
 # deal.II's split of the grid ('Cell type = simplex', as the tests use), the
 # four splits written by cook_triangulations.py (one diagonal each way,
 # both diagonals around a centre node, alternating diagonals) and, where
 # gmsh is installed (Debian package gmsh), a Delaunay mesh of mesh size
 # 41.6 / N.
 #
+# With FACTORS set (e.g. FACTORS="1 2 4 8 16"), a second table gives the
+# nodal pressure's tip ratio on each mesh for each 'Materials/Nodal
+# pressure/Stabilization factor'.
+#
 # Usage (from the repository top, after building):
-#   bash parameters/studies/cook_triangulations.sh [path/to/tissuefem] [N]
+#   [FACTORS="..."] bash parameters/studies/cook_triangulations.sh [path/to/tissuefem] [N]
 set -euo pipefail
 exe=$(realpath "${1:-build/tissuefem}")
 n=${2:-64}
@@ -41,11 +48,13 @@ run() { # formulation, Poisson's ratio, geometry settings...: prints tip and wal
   echo "$(tail -1 out/probes.csv | cut -d, -f6) $(echo "$(date +%s.%N) - $start" | bc)"
 }
 
+declare -A factor_row
 meshes="deal.II right left crossed alternating"
 if command -v gmsh > /dev/null; then
   meshes="$meshes gmsh"
 fi
-printf '%-12s %7s %9s %9s %9s %16s\n' mesh cells "P1 0.3" "P1" "P1-nodal" "wall P1, nodal"
+printf '%-12s %7s %9s %9s %9s %11s %24s\n' mesh cells "P1 0.3" "P1" "P1-nodal" "P1-pressure" \
+  "wall P1, nodal, pressure"
 for mesh in $meshes; do
   if [ "$mesh" = deal.II ]; then
     geometry=(--set "Geometry/Cell type=simplex" --set "Geometry/Subdivisions=$n, $n")
@@ -69,7 +78,23 @@ GEO
   read -r locked wall_p1 < <(run displacement 0.4999 "${geometry[@]}")
   cells=$(sed -n 's/.* \([0-9]*\) cells,.*/\1/p' log.txt | head -1)
   read -r nodal wall_nodal < <(run "nodal dilatation" 0.4999 "${geometry[@]}")
-  printf '%-12s %7s %9.4f %9.4f %9.4f %7.1f, %6.1f\n' "$mesh" "$cells" \
+  read -r pressure wall_pressure < <(run "nodal pressure" 0.4999 "${geometry[@]}")
+  printf '%-12s %7s %9.4f %9.4f %9.4f %11.4f %10.1f, %5.1f, %5.1f\n' "$mesh" "$cells" \
     "$(echo "$compressible / 7.7813" | bc -l)" "$(echo "$locked / 6.9347" | bc -l)" \
-    "$(echo "$nodal / 6.9347" | bc -l)" "$wall_p1" "$wall_nodal"
+    "$(echo "$nodal / 6.9347" | bc -l)" "$(echo "$pressure / 6.9347" | bc -l)" \
+    "$wall_p1" "$wall_nodal" "$wall_pressure"
+  factor_row[$mesh]=""
+  for factor in ${FACTORS:-}; do
+    read -r tip _ < <(run "nodal pressure" 0.4999 "${geometry[@]}" \
+      --set "Materials/Nodal pressure/Stabilization factor=$factor")
+    factor_row[$mesh]+=$(printf ' %9.4f' "$(echo "$tip / 6.9347" | bc -l)")
+  done
 done
+if [ -n "${FACTORS:-}" ]; then
+  echo
+  echo "P1-pressure at nu = 0.4999, tip / 6.9347, by stabilization factor:"
+  printf '%-12s' mesh
+  for factor in $FACTORS; do printf ' %9s' "$factor"; done
+  printf '\n'
+  for mesh in $meshes; do printf '%-12s%s\n' "$mesh" "${factor_row[$mesh]}"; done
+fi

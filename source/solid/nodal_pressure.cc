@@ -5,11 +5,11 @@
 
 #include <tissuefem/base/input_error.h>
 #include <tissuefem/solid/augmented_system.h>
+#include <tissuefem/solid/matrix_rows.h>
 #include <tissuefem/solid/nodal_pressure.h>
 
 #include <algorithm>
 #include <cstring>
-#include <utility>
 
 namespace tissuefem::solid
 {
@@ -109,6 +109,26 @@ namespace tissuefem::solid
     b.reinit(owned_p, relevant_p, comm, true);
     p.reinit(owned_p, comm);
     pressure.reinit(owned_p, relevant_p, comm);
+    const auto &ghosts = pressure.trilinos_vector().Map();
+    for (const auto &v : vertex)
+      for (unsigned int a = 0; a <= dim; ++a)
+        pressure_index.push_back(
+          ghosts.LID(static_cast<TrilinosWrappers::types::int_type>(v[a])));
+    const unsigned int n_e
+      = nodal.cells.empty() ? 0 : nodal.cells[0].dofs.size();
+    residual_row.assign(owned_cells.size() * n_e, -1);
+    for (unsigned int o = 0; o < owned_cells.size(); ++o)
+      {
+        const auto &dofs = nodal.cells[owned_cells[o]].dofs;
+        bool        free = true;
+        for (const auto i : dofs)
+          free = free && discretization.locally_owned.is_element(i)
+                 && !discretization.constraints.is_constrained(i);
+        if (free)
+          for (unsigned int i = 0; i < n_e; ++i)
+            residual_row[o * n_e + i]
+              = discretization.locally_owned.index_within_set(dofs[i]);
+      }
     F.resize(owned_cells.size());
     cofactor.resize(owned_cells.size());
     J.resize(owned_cells.size());
@@ -120,14 +140,38 @@ namespace tissuefem::solid
   void
   NodalPressure<dim>::deformation(const VectorType &u)
   {
+    const unsigned int n_e
+      = nodal.cells.empty() ? 0 : nodal.cells[0].dofs.size();
+    const auto &vector = u.trilinos_vector();
+    if (ghost_length != vector.MyLength())
+      {
+        ghost_length = vector.MyLength();
+        ghost_index.resize(owned_cells.size() * n_e);
+        for (unsigned int o = 0; o < owned_cells.size(); ++o)
+          for (unsigned int i = 0; i < n_e; ++i)
+            {
+              ghost_index[o * n_e + i] = vector.Map().LID(
+                static_cast<TrilinosWrappers::types::int_type>(
+                  nodal.cells[owned_cells[o]].dofs[i]));
+              AssertThrow(ghost_index[o * n_e + i] >= 0, ExcInternalError());
+            }
+      }
+    const double *values = vector[0];
     parallel::apply_to_subranges(
       0U,
       static_cast<unsigned int>(owned_cells.size()),
       [&](const unsigned int begin, const unsigned int end) {
         for (unsigned int o = begin; o < end; ++o)
           {
-            F[o] = nodal.deformation_gradient(nodal.cells[owned_cells[o]], u);
-            J[o] = determinant(F[o]);
+            const auto &cell = nodal.cells[owned_cells[o]];
+            F[o]             = unit_symmetric_tensor<dim>();
+            for (unsigned int i = 0; i < n_e; ++i)
+              {
+                const auto [node, component] = cell.node_component[i];
+                F[o][component]
+                  += values[ghost_index[o * n_e + i]] * cell.gradient[node];
+              }
+            J[o]        = determinant(F[o]);
             cofactor[o] = J[o] != 0
                             ? Tensor<2, dim>(J[o] * transpose(invert(F[o])))
                             : Tensor<2, dim>();
@@ -172,12 +216,13 @@ namespace tissuefem::solid
                 b.trilinos_vector()[0],
                 owned_p.n_elements() * sizeof(double));
     factorization->solve(p, rhs_p);
-    pressure = p;
+    pressure            = p;
+    const double *local = pressure.trilinos_vector()[0];
     for (unsigned int o = 0; o < owned_cells.size(); ++o)
       {
         double sum = 0;
         for (unsigned int a = 0; a <= dim; ++a)
-          sum += std::as_const(pressure)(vertex[o][a]);
+          sum += local[pressure_index[o * (dim + 1) + a]];
         pbar[o] = sum / (dim + 1);
       }
   }
@@ -291,12 +336,21 @@ namespace tissuefem::solid
       = nodal.cells.empty() ? 0 : nodal.cells[0].dofs.size();
     // Cells computed in parallel by chunks, added in order (the sums do
     // not depend on the threads).
-    const unsigned int                   chunk = 2048;
-    std::vector<Vector<double>>          r(std::min(n_o, chunk));
-    std::vector<FullMatrix<double>>      K(jacobian ? r.size() : 0);
-    std::vector<bool>                    undefined(r.size());
-    std::vector<types::global_dof_index> indices(n_e + dim + 1);
-    Vector<double>                       r_u(n_e);
+    const unsigned int chunk = 2048;
+    // The cells' rows and blocks, kept from call to call (the line search
+    // asks for many residuals).
+    auto &r         = cell_rows;
+    auto &K         = cell_blocks;
+    auto &undefined = cell_undefined;
+    r.resize(std::max<std::size_t>(r.size(), std::min(n_o, chunk)));
+    undefined.resize(r.size());
+    if (jacobian)
+      K.resize(r.size());
+    const unsigned int                   n_a = n_e + dim + 1;
+    std::vector<types::global_dof_index> indices(n_a);
+    double        *rhs_values = jacobian ? rhs.trilinos_vector()[0] : nullptr;
+    double        *residual_values = residual.trilinos_vector()[0];
+    Vector<double> r_u(n_e);
     for (unsigned int first = 0; first < n_o; first += chunk)
       {
         const unsigned int last = std::min(n_o, first + chunk);
@@ -329,7 +383,24 @@ namespace tissuefem::solid
                 continue;
               }
             std::copy(cell.dofs.begin(), cell.dofs.end(), indices.begin());
-            if (jacobian)
+            const int *row
+              = jacobian ? &direct_row[std::size_t(o) * n_a] : nullptr;
+            if (jacobian && row[0] >= 0)
+              {
+                // In place: owned, free rows.
+                const auto &K_o = K[o - first];
+                const auto &r_o = r[o - first];
+                for (unsigned int i = 0; i < n_a; ++i)
+                  {
+                    rhs_values[row[i]] += r_o(i);
+                    double              *values = row_values[row[i]];
+                    const std::uint16_t *entry
+                      = &direct_entry[(std::size_t(o) * n_a + i) * n_a];
+                    for (unsigned int j = 0; j < n_a; ++j)
+                      values[entry[j]] += K_o(i, j);
+                  }
+              }
+            else if (jacobian)
               {
                 for (unsigned int v = 0; v <= dim; ++v)
                   indices[n_e + v] = n_u + vertex[o][v];
@@ -339,6 +410,13 @@ namespace tissuefem::solid
                                                           matrix,
                                                           rhs,
                                                           inhomogeneous);
+              }
+            else if (residual_row[std::size_t(o) * n_e] >= 0)
+              {
+                // In place: owned, free rows.
+                const int *rows_here = &residual_row[std::size_t(o) * n_e];
+                for (unsigned int i = 0; i < n_e; ++i)
+                  residual_values[rows_here[i]] += r[o - first](i);
               }
             else
               {
@@ -392,7 +470,45 @@ namespace tissuefem::solid
     rhs.reinit(owned, relevant, comm, true);
     uu_row.clear();
     uu_entry.clear();
+    build_direct_access(*constraints);
     system_built = true;
+  }
+
+
+  template <int dim>
+  void
+  NodalPressure<dim>::build_direct_access(
+    const AffineConstraints<double> &constraints)
+  {
+    const unsigned int n_a
+      = nodal.cells.empty() ? 0 : nodal.cells[0].dofs.size() + dim + 1;
+    row_values = row_value_pointers(matrix);
+    direct_row.assign(owned_cells.size() * n_a, -1);
+    direct_entry.assign(owned_cells.size() * n_a * n_a, 0);
+    std::vector<types::global_dof_index> indices;
+    for (unsigned int o = 0; o < owned_cells.size(); ++o)
+      {
+        const auto &dofs = nodal.cells[owned_cells[o]].dofs;
+        bool        free = true;
+        for (const auto i : dofs)
+          free = free && owned.is_element(i) && !constraints.is_constrained(i);
+        if (!free)
+          continue;
+        indices.assign(dofs.begin(), dofs.end());
+        for (unsigned int v = 0; v <= dim; ++v)
+          indices.push_back(n_u + vertex[o][v]);
+        for (unsigned int i = 0; i < n_a; ++i)
+          {
+            const int r = owned.index_within_set(indices[i]);
+            direct_row[std::size_t(o) * n_a + i] = r;
+            for (unsigned int j = 0; j < n_a; ++j)
+              {
+                const int position = entry_in_row(matrix, r, indices[j]);
+                AssertThrow(position < 65536, ExcInternalError());
+                direct_entry[(std::size_t(o) * n_a + i) * n_a + j] = position;
+              }
+          }
+      }
   }
 
 

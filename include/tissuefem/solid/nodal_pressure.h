@@ -16,6 +16,7 @@
 #include <tissuefem/solvers/linear_solver.h>
 
 #include <array>
+#include <cstdint>
 #include <memory>
 #include <tuple>
 #include <vector>
@@ -131,6 +132,11 @@ namespace tissuefem::solid
     void
     solve_pressures(const materials::MaterialSet<dim> &materials);
 
+    /// Fills direct_row, direct_entry and row_values (after the matrix is
+    /// built).
+    void
+    build_direct_access(const AffineConstraints<double> &constraints);
+
     /// F, J and J F^{-T} of every owned cell for the ghosted @p u.
     void
     deformation(const VectorType &u);
@@ -169,5 +175,26 @@ namespace tissuefem::solid
     VectorType                rhs;
     AffineConstraints<double> augmented_rows;
     std::vector<int>          uu_row, uu_entry;
+    /// In-place insertion for owned cells whose displacement dofs are all
+    /// owned and free (then so are their pressures): per owned cell its
+    /// rows' local indices (-1 for the other cells) and each entry's
+    /// position in its row; the rows' values.
+    std::vector<int>           direct_row;
+    std::vector<std::uint16_t> direct_entry;
+    std::vector<double *>      row_values;
+    /// Per owned cell and dof its index in the ghosted displacement
+    /// vectors (Trilinos' local index; built for vectors of ghost_length
+    /// entries), and its row in the residual where the cell's dofs are all
+    /// owned and free under the solid's constraints (else -1).
+    std::vector<int> ghost_index, residual_row;
+    int              ghost_length = -1;
+    /// assemble()'s work space: a chunk of cells' rows and blocks, and
+    /// which are undefined.
+    std::vector<Vector<double>>     cell_rows;
+    std::vector<FullMatrix<double>> cell_blocks;
+    std::vector<char>               cell_undefined;
+    /// Per owned cell and vertex the local index of its pressure in
+    /// @p pressure.
+    std::vector<int> pressure_index;
   };
 } // namespace tissuefem::solid
