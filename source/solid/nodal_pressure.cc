@@ -4,6 +4,7 @@
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 
 #include <tissuefem/base/input_error.h>
+#include <tissuefem/materials/kinematics.h>
 #include <tissuefem/solid/augmented_system.h>
 #include <tissuefem/solid/matrix_rows.h>
 #include <tissuefem/solid/nodal_pressure.h>
@@ -73,7 +74,7 @@ namespace tissuefem::solid
           const auto part
             = materials.material(cell.material_id).volumetric_part(1.);
           AssertThrow(part.lambda > 0 && part.mu > 0, ExcInternalError());
-          moduli.push_back({part.lambda, part.mu});
+          moduli.push_back({{part.lambda, part.mu}});
         }
 
     // A, fixed per mesh: the reference cells' pressure mass and
@@ -172,9 +173,7 @@ namespace tissuefem::solid
                   += values[ghost_index[o * n_e + i]] * cell.gradient[node];
               }
             J[o]        = determinant(F[o]);
-            cofactor[o] = J[o] != 0
-                            ? Tensor<2, dim>(J[o] * transpose(invert(F[o])))
-                            : Tensor<2, dim>();
+            cofactor[o] = materials::cofactor(F[o]);
           }
       },
       256);

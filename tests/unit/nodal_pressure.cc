@@ -17,13 +17,18 @@
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/quadrature_lib.h>
 #include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/full_matrix.h>
 
 #include <tissuefem/app/parameters.h>
+#include <tissuefem/solid/quantities.h>
 
 #include "../tests.h"
 #include "solid_scene.h"
 
+#include <cmath>
 #include <map>
 
 using namespace dealii;
@@ -130,6 +135,154 @@ namespace
                                      "plain P1's");
   }
 
+  /**
+   * The stored energy of a random state against an evaluation of its own:
+   * the pressure's mass M and cell-mean part M0 integrated by FEValues
+   * (exact for quadratics) instead of in closed form, A = M / lambda +
+   * alpha (M - M0) / mu and b_i = int N_i log J assembled densely, and W =
+   * int (mu/2 (tr F^T F - d) - mu log J) + b^T A^{-1} b / 2 (the
+   * neo-Hookean energy with its lambda/2 log^2 J replaced).
+   */
+  template <int dim>
+  void
+  check_energy()
+  {
+    ParameterHandler prm;
+    declare_all_parameters(prm);
+    prm.parse_input_from_string(
+      scene(dim, "neo-Hookean", "MUMPS", "nodal pressure", false));
+    tissuefem_tests::SolidScene<dim> scene(prm);
+    const auto                      &d = *scene.discretization;
+    tissuefem_tests::Random          random(20261130);
+    VectorType                       u;
+    scene.solid->initialize_vector(u);
+    for (const auto i : u.locally_owned_elements())
+      u[i] = 0.1 * random.uniform();
+    u.compress(VectorOperation::insert);
+    VectorType ghosted(d.locally_owned, d.locally_relevant, MPI_COMM_WORLD);
+    ghosted = u;
+
+    const double E = 10, nu = 0.499, alpha = 4; // the scene's, the default
+    const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu));
+    const double mu     = E / (2 * (1 + nu));
+    const unsigned int                   n_v = d.dof_handler.n_dofs() / dim;
+    std::vector<double>                  A(n_v * n_v, 0.), b(n_v, 0.);
+    double                               rest = 0;
+    const QGaussSimplex<dim>             quadrature(2);
+    FEValues<dim>                        fe_values(*d.mapping,
+                            *d.fe,
+                            quadrature,
+                            update_values | update_gradients
+                              | update_JxW_values);
+    const FEValuesExtractors::Vector     displacement(0);
+    std::vector<Tensor<2, dim>>          grad(quadrature.size());
+    std::vector<types::global_dof_index> dofs(d.fe->n_dofs_per_cell());
+    struct Cell
+    {
+      unsigned int              index;
+      Tensor<2, dim>            F;
+      std::vector<unsigned int> vertex;
+    };
+    std::vector<Cell> cells;
+    for (const auto &cell : d.dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          fe_values[displacement].get_function_gradients(ghosted, grad);
+          cell->get_dof_indices(dofs);
+          // The hat functions: the first component's shape functions; a
+          // vertex's pressure index is that dof / dim.
+          std::vector<unsigned int> hat, vertex;
+          for (unsigned int k = 0; k < dofs.size(); ++k)
+            if (d.fe->system_to_component_index(k).first == 0)
+              {
+                hat.push_back(k);
+                vertex.push_back(dofs[k] / dim);
+              }
+          const Tensor<2, dim> F = unit_symmetric_tensor<dim>() + grad[0];
+          const double         J = determinant(F);
+          cells.push_back({cell->active_cell_index(), F, vertex});
+          double              V = 0;
+          std::vector<double> mean(hat.size(), 0.);
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            {
+              V += fe_values.JxW(q);
+              for (unsigned int a = 0; a < hat.size(); ++a)
+                mean[a] += fe_values.shape_value(hat[a], q) * fe_values.JxW(q);
+            }
+          rest
+            += V * (0.5 * mu * (scalar_product(F, F) - dim) - mu * std::log(J));
+          for (unsigned int a = 0; a < hat.size(); ++a)
+            {
+              b[vertex[a]] += mean[a] * std::log(J);
+              for (unsigned int c = 0; c < hat.size(); ++c)
+                {
+                  double m = 0;
+                  for (unsigned int q = 0; q < quadrature.size(); ++q)
+                    m += fe_values.shape_value(hat[a], q)
+                         * fe_values.shape_value(hat[c], q) * fe_values.JxW(q);
+                  const double m0 = mean[a] * mean[c] / V;
+                  A[vertex[a] * n_v + vertex[c]]
+                    += m / lambda + alpha * (m - m0) / mu;
+                }
+            }
+        }
+    Utilities::MPI::sum(A, MPI_COMM_WORLD, A);
+    Utilities::MPI::sum(b, MPI_COMM_WORLD, b);
+    rest = Utilities::MPI::sum(rest, MPI_COMM_WORLD);
+    FullMatrix<double> dense(n_v, n_v);
+    for (unsigned int i = 0; i < n_v; ++i)
+      for (unsigned int j = 0; j < n_v; ++j)
+        dense(i, j) = A[i * n_v + j];
+    dense.gauss_jordan();
+    Vector<double> rhs(b.begin(), b.end()), p(n_v);
+    dense.vmult(p, rhs);
+    const double expected = rest + 0.5 * (p * rhs);
+    const double energy   = scene.solid->stored_energy(u);
+    // The outputs' von Mises stress with the cell's own pressure pbar (the
+    // mean of its vertices'): P = mu F + (pbar - mu) F^{-T}, sigma = P F^T / J.
+    Vector<float> jacobian, von_mises;
+    solid::cell_fields(d,
+                       scene.solid->get_materials(),
+                       scene.solid->fibres(),
+                       scene.solid->deformation(ghosted).get(),
+                       ghosted,
+                       jacobian,
+                       von_mises);
+    double worst = 0;
+    for (const auto &cell : cells)
+      {
+        double pbar = 0;
+        for (const unsigned int v : cell.vertex)
+          pbar += p[v] / cell.vertex.size();
+        const double         J = determinant(cell.F);
+        const Tensor<2, dim> P
+          = mu * cell.F + (pbar - mu) * transpose(invert(cell.F));
+        const Tensor<2, dim> sigma    = P * transpose(cell.F) / J;
+        Tensor<2, dim>       deviator = sigma;
+        for (unsigned int i = 0; i < dim; ++i)
+          deviator[i][i] -= trace(sigma) / dim;
+        const double expected_vm
+          = std::sqrt(1.5 * scalar_product(deviator, deviator));
+        tissuefem_tests::raise(worst,
+                               std::abs(von_mises[cell.index] - expected_vm)
+                                 / expected_vm);
+      }
+    worst = Utilities::MPI::max(worst, MPI_COMM_WORLD);
+    tissuefem_tests::check_small(worst,
+                                 1e-5,
+                                 std::to_string(dim)
+                                   + "D: the outputs' von Mises stress with "
+                                     "the cells' own pressures (single "
+                                     "precision)");
+    tissuefem_tests::check_small(std::abs(energy - expected)
+                                   / std::abs(expected),
+                                 1e-10,
+                                 std::to_string(dim)
+                                   + "D: a random state's energy against "
+                                     "A and b integrated on their own");
+  }
+
   template <int dim>
   void
   check(const std::string &name, const std::string &text)
@@ -213,6 +366,8 @@ main(int argc, char **argv)
   const tissuefem_tests::OneWriter one_writer;
   check_homogeneous<2>("neo-Hookean");
   check_homogeneous<3>("robust neo-Hookean");
+  check_energy<2>();
+  check_energy<3>();
   for (const std::string solver : {"MUMPS", "KLU", "UMFPACK"})
     {
       if (solver == "UMFPACK"

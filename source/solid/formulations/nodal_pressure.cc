@@ -93,7 +93,8 @@ namespace tissuefem::solid::formulations
       require(model->volumetric_part(1.).lambda > 0,
               "Materials/Formulation",
               "'nodal pressure' needs a model whose energy has a volumetric "
-              "part lambda/2 g(J)^2 (the neo-Hookean models); '"
+              "part lambda/2 g(J)^2 with lambda > 0 (the neo-Hookean models, "
+              "Poisson's ratio above 0); '"
                 + name
                 + "' has none: use 'nodal dilatation', which takes any "
                   "model");
@@ -143,9 +144,10 @@ namespace tissuefem::solid::formulations
                                    const bool          wide,
                                    TrilinosWrappers::SparsityPattern &)
   {
-    // A Jacobian asked for without the system is a solver's error,
-    // reported by check_solving() before the first step.
-    AssertThrow(!wide, ExcInternalError());
+    // A Jacobian asked for without the system is a solver's error, which
+    // integrators report before their first step (check_solving()); other
+    // callers (benchmarks, stiffness estimates) here.
+    check_solving(!wide);
     pressure->build_system(
       through_operators ? &context.discretization.constraints : nullptr);
   }
