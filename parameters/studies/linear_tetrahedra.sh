@@ -11,12 +11,13 @@
 # locks, plain P1 is already about 30 % short of P2 on this coarse mesh,
 # so no linear element reaches P2-P0 within a few percent here; at nu =
 # 0.49 plain P1 loses another half of its displacement to locking, which
-# the nodal dilatation ('Formulation = nodal dilatation') gives back.
+# the nodal dilatation ('Formulation = nodal dilatation') and the nodal
+# pressure ('Formulation = nodal pressure') give back.
 #
 # Refined meshes (measured 2026-11-25, doc/studies.md): with
 # REFINEMENTS=1 or 2 every tetrahedron is split into 8 (4,768 and 38,144
 # tetrahedra), to see where each element converges; ELEMENTS picks the
-# elements (default all four; the ratio column needs P2-P0-F-bar).
+# elements (default all five; the ratio column needs P2-P0-F-bar).
 #
 # Usage (from the repository top, after building):
 #   bash parameters/studies/linear_tetrahedra.sh [path/to/tissuefem]
@@ -27,7 +28,7 @@ prm=$(realpath "$(dirname "$0")/../liver_incompressible.prm")
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 refinements=${REFINEMENTS:-0}
-read -r -a elements <<< "${ELEMENTS:-P2-P0-F-bar P1 P1-nodal P2}"
+read -r -a elements <<< "${ELEMENTS:-P2-P0-F-bar P1 P1-nodal P1-pressure P2}"
 
 # run NAME NU: prints "unknowns |u| seconds".
 run() {
@@ -39,6 +40,7 @@ run() {
   case $name in
     P1) args+=(--set "Finite element/Polynomial degree=1" --set "Materials/Formulation=displacement") ;;
     P1-nodal) args+=(--set "Finite element/Polynomial degree=1" --set "Materials/Formulation=nodal dilatation") ;;
+    P1-pressure) args+=(--set "Finite element/Polynomial degree=1" --set "Materials/Formulation=nodal pressure") ;;
     P2) args+=(--set "Materials/Formulation=displacement") ;;
     P2-P0-F-bar) ;;
   esac
@@ -64,7 +66,7 @@ for nu in 0.49 0.3; do
   done
   read -r _ reference _ <<< "${result[P2-P0-F-bar]:-x nan x}"
   read -r _ _ p1_wall <<< "${result[P1]:-x x nan}"
-  for name in P1 P1-nodal P2 P2-P0-F-bar; do
+  for name in P1 P1-nodal P1-pressure P2 P2-P0-F-bar; do
     [ -n "${result[$name]:-}" ] || continue
     read -r n u wall <<< "${result[$name]}"
     awk -v name="$name" -v n="$n" -v u="$u" -v r="$reference" -v w="$wall" -v w1="$p1_wall" \

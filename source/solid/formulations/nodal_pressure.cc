@@ -59,8 +59,10 @@ namespace tissuefem::solid::formulations
       "take 1). Larger values weaken the incompressibility constraint "
       "per vertex towards one per cell; smaller ones approach the "
       "unstable equal-order pair. doc/studies.md ('The four-unknown "
-      "element') gives Cook's membrane on six triangulations for 1, 2, 4 "
-      "and 10; 4 is the default there.");
+      "element') gives Cook's membrane on six triangulations for 1, 2, 4, "
+      "8 and 16: 4 is the largest of them at which no triangulation's "
+      "answer exceeds the converged one, as a conforming displacement "
+      "element's never does.");
     prm.leave_subsection();
     prm.leave_subsection();
   }
