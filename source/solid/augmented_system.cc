@@ -8,6 +8,34 @@
 
 namespace tissuefem::solid
 {
+  IndexSet
+  vertex_set(const IndexSet &dofs, const unsigned int dim)
+  {
+    IndexSet vertices(dofs.size() / dim);
+    for (const auto i : dofs)
+      if (i % dim == 0)
+        vertices.add_index(i / dim);
+    vertices.compress();
+    return vertices;
+  }
+
+
+  IndexSet
+  with_vertex_unknowns(const IndexSet    &dofs,
+                       const unsigned int dim,
+                       const unsigned int copies)
+  {
+    const IndexSet                vertices   = vertex_set(dofs, dim);
+    const types::global_dof_index n_vertices = vertices.size();
+    IndexSet                      result(dofs.size() + copies * n_vertices);
+    result.add_indices(dofs);
+    for (unsigned int k = 0; k < copies; ++k)
+      result.add_indices(vertices, dofs.size() + k * n_vertices);
+    result.compress();
+    return result;
+  }
+
+
   void
   copy_dirichlet_lines(const AffineConstraints<double> &from,
                        const IndexSet                  &relevant,

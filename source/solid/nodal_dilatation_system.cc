@@ -49,22 +49,11 @@ namespace tissuefem::solid
     const NodalDilatation<dim> &nodal)
       : nodal(nodal)
   {
-    n_u                = discretization.n_dofs();
-    n_vertices         = n_u / dim;
-    const auto augment = [&](const IndexSet &dofs) {
-      IndexSet vertices(n_vertices);
-      for (const auto i : dofs)
-        if (i % dim == 0)
-          vertices.add_index(i / dim);
-      IndexSet result(n_u + 2 * n_vertices);
-      result.add_indices(dofs);
-      result.add_indices(vertices, n_u);
-      result.add_indices(vertices, n_u + n_vertices);
-      result.compress();
-      return result;
-    };
-    owned    = augment(discretization.locally_owned);
-    relevant = augment(discretization.locally_relevant);
+    n_u        = discretization.n_dofs();
+    n_vertices = n_u / dim;
+    // s, then p, at each vertex.
+    owned    = with_vertex_unknowns(discretization.locally_owned, dim, 2);
+    relevant = with_vertex_unknowns(discretization.locally_relevant, dim, 2);
 
     const auto &cells         = nodal.cells;
     const auto &volume_around = nodal.volume_around;

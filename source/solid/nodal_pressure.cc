@@ -47,19 +47,13 @@ namespace tissuefem::solid
   {
     const MPI_Comm comm = parallel_tools::communicator();
     n_u                 = discretization.n_dofs();
-    n_vertices          = n_u / dim;
     n_active_cells
       = discretization.dof_handler.get_triangulation().n_active_cells();
-    const auto vertices_of = [&](const IndexSet &dofs) {
-      IndexSet result(n_vertices);
-      for (const auto i : dofs)
-        if (i % dim == 0)
-          result.add_index(i / dim);
-      result.compress();
-      return result;
-    };
-    owned_p    = vertices_of(discretization.locally_owned);
-    relevant_p = vertices_of(discretization.locally_relevant);
+    owned_p    = vertex_set(discretization.locally_owned, dim);
+    relevant_p = vertex_set(discretization.locally_relevant, dim);
+    // The Newton system's unknowns: the displacement's, then p.
+    owned    = with_vertex_unknowns(discretization.locally_owned, dim, 1);
+    relevant = with_vertex_unknowns(discretization.locally_relevant, dim, 1);
 
     for (unsigned int g = 0; g < nodal.cells.size(); ++g)
       if (nodal.cells[g].owned)
@@ -108,6 +102,7 @@ namespace tissuefem::solid
       control, TrilinosWrappers::SolverDirect::AdditionalData(false));
     factorization->initialize(A);
     b.reinit(owned_p, relevant_p, comm, true);
+    owned_b.reinit(owned_p, comm);
     p.reinit(owned_p, comm);
     pressure.reinit(owned_p, relevant_p, comm);
     const auto &ghosts = pressure.trilinos_vector().Map();
@@ -210,11 +205,10 @@ namespace tissuefem::solid
     b.add(where, what);
     b.compress(VectorOperation::add);
     // The owned part of b (its ghosts only served the sum).
-    VectorType rhs_p(owned_p, parallel_tools::communicator());
-    std::memcpy(rhs_p.trilinos_vector()[0],
+    std::memcpy(owned_b.trilinos_vector()[0],
                 b.trilinos_vector()[0],
                 owned_p.n_elements() * sizeof(double));
-    factorization->solve(p, rhs_p);
+    factorization->solve(p, owned_b);
     pressure            = p;
     const double *local = pressure.trilinos_vector()[0];
     for (unsigned int o = 0; o < owned_cells.size(); ++o)
@@ -299,11 +293,11 @@ namespace tissuefem::solid
             (*K)(i, j) = V * value;
           }
         // B = db/du: the vertices' share of V g' dJ.
+        const double entry = V / (dim + 1) * part.dg * a[k][c];
         for (unsigned int v = 0; v <= dim; ++v)
           {
-            const double entry = V / (dim + 1) * part.dg * a[k][c];
-            (*K)(p0 + v, i)    = entry;
-            (*K)(i, p0 + v)    = entry;
+            (*K)(p0 + v, i) = entry;
+            (*K)(i, p0 + v) = entry;
           }
       }
     for (unsigned int v = 0; v <= dim; ++v)
@@ -331,8 +325,6 @@ namespace tissuefem::solid
 
     std::vector<std::tuple<unsigned int, double, Point<dim>>> inverted;
     const unsigned int n_o = owned_cells.size();
-    const unsigned int n_e
-      = nodal.cells.empty() ? 0 : nodal.cells[0].dofs.size();
     // Cells computed in parallel by chunks, added in order (the sums do
     // not depend on the threads).
     const unsigned int chunk = 2048;
@@ -345,11 +337,6 @@ namespace tissuefem::solid
     undefined.resize(r.size());
     if (jacobian)
       K.resize(r.size());
-    const unsigned int                   n_a = n_e + dim + 1;
-    std::vector<types::global_dof_index> indices(n_a);
-    double        *rhs_values = jacobian ? rhs.trilinos_vector()[0] : nullptr;
-    double        *residual_values = residual.trilinos_vector()[0];
-    Vector<double> r_u(n_e);
     for (unsigned int first = 0; first < n_o; first += chunk)
       {
         const unsigned int last = std::min(n_o, first + chunk);
@@ -374,61 +361,72 @@ namespace tissuefem::solid
           },
           32);
         for (unsigned int o = first; o < last; ++o)
-          {
-            const auto &cell = nodal.cells[owned_cells[o]];
-            if (undefined[o - first])
-              {
-                inverted.emplace_back(cell.active_index, J[o], cell.centre);
-                continue;
-              }
-            std::copy(cell.dofs.begin(), cell.dofs.end(), indices.begin());
-            const int *row
-              = jacobian ? &direct_row[std::size_t(o) * n_a] : nullptr;
-            if (jacobian && row[0] >= 0)
-              {
-                // In place: owned, free rows.
-                const auto &K_o = K[o - first];
-                const auto &r_o = r[o - first];
-                for (unsigned int i = 0; i < n_a; ++i)
-                  {
-                    rhs_values[row[i]] += r_o(i);
-                    double              *values = row_values[row[i]];
-                    const std::uint16_t *entry
-                      = &direct_entry[(std::size_t(o) * n_a + i) * n_a];
-                    for (unsigned int j = 0; j < n_a; ++j)
-                      values[entry[j]] += K_o(i, j);
-                  }
-              }
-            else if (jacobian)
-              {
-                for (unsigned int v = 0; v <= dim; ++v)
-                  indices[n_e + v] = n_u + vertex[o][v];
-                augmented_rows.distribute_local_to_global(K[o - first],
-                                                          r[o - first],
-                                                          indices,
-                                                          matrix,
-                                                          rhs,
-                                                          inhomogeneous);
-              }
-            else if (residual_row[std::size_t(o) * n_e] >= 0)
-              {
-                // In place: owned, free rows.
-                const int *rows_here = &residual_row[std::size_t(o) * n_e];
-                for (unsigned int i = 0; i < n_e; ++i)
-                  residual_values[rows_here[i]] += r[o - first](i);
-              }
-            else
-              {
-                std::copy(r[o - first].begin(),
-                          r[o - first].begin() + n_e,
-                          r_u.begin());
-                std::vector<types::global_dof_index> u_indices(
-                  cell.dofs.begin(), cell.dofs.end());
-                rows.distribute_local_to_global(r_u, u_indices, residual);
-              }
-          }
+          if (undefined[o - first])
+            {
+              const auto &cell = nodal.cells[owned_cells[o]];
+              inverted.emplace_back(cell.active_index, J[o], cell.centre);
+            }
+          else
+            add_rows(o,
+                     r[o - first],
+                     jacobian ? &K[o - first] : nullptr,
+                     rows,
+                     inhomogeneous,
+                     residual);
       }
     return inverted;
+  }
+
+
+  template <int dim>
+  void
+  NodalPressure<dim>::add_rows(const unsigned int               o,
+                               const Vector<double>            &r,
+                               const FullMatrix<double>        *K,
+                               const AffineConstraints<double> &rows,
+                               const bool                       inhomogeneous,
+                               VectorType                      &residual)
+  {
+    const auto        &dofs = nodal.cells[owned_cells[o]].dofs;
+    const unsigned int n_e  = dofs.size();
+    const unsigned int n_a  = n_e + dim + 1;
+    if (K && direct_row[std::size_t(o) * n_a] >= 0)
+      {
+        // In place: owned, free rows.
+        const int *row        = &direct_row[std::size_t(o) * n_a];
+        double    *rhs_values = rhs.trilinos_vector()[0];
+        for (unsigned int i = 0; i < n_a; ++i)
+          {
+            rhs_values[row[i]] += r(i);
+            double              *values = row_values[row[i]];
+            const std::uint16_t *entry
+              = &direct_entry[(std::size_t(o) * n_a + i) * n_a];
+            for (unsigned int j = 0; j < n_a; ++j)
+              values[entry[j]] += (*K)(i, j);
+          }
+      }
+    else if (K)
+      {
+        std::vector<types::global_dof_index> indices(dofs.begin(), dofs.end());
+        for (unsigned int v = 0; v <= dim; ++v)
+          indices.push_back(n_u + vertex[o][v]);
+        augmented_rows.distribute_local_to_global(
+          *K, r, indices, matrix, rhs, inhomogeneous);
+      }
+    else if (residual_row[std::size_t(o) * n_e] >= 0)
+      {
+        // In place: owned, free rows.
+        const int *row    = &residual_row[std::size_t(o) * n_e];
+        double    *values = residual.trilinos_vector()[0];
+        for (unsigned int i = 0; i < n_e; ++i)
+          values[row[i]] += r(i);
+      }
+    else
+      {
+        Vector<double>                       r_u(r.begin(), r.begin() + n_e);
+        std::vector<types::global_dof_index> indices(dofs.begin(), dofs.end());
+        rows.distribute_local_to_global(r_u, indices, residual);
+      }
   }
 
 
@@ -439,20 +437,7 @@ namespace tissuefem::solid
     system_built = false;
     if (!constraints)
       return;
-    const MPI_Comm comm    = parallel_tools::communicator();
-    const auto     augment = [&](const IndexSet &vertices) {
-      IndexSet dofs(n_vertices * dim);
-      for (const auto v : vertices)
-        for (unsigned int c = 0; c < dim; ++c)
-          dofs.add_index(v * dim + c);
-      IndexSet result(n_u + n_vertices);
-      result.add_indices(dofs);
-      result.add_indices(vertices, n_u);
-      result.compress();
-      return result;
-    };
-    owned    = augment(owned_p);
-    relevant = augment(relevant_p);
+    const MPI_Comm comm = parallel_tools::communicator();
     copy_dirichlet_lines(*constraints, relevant, augmented_rows);
     TrilinosWrappers::SparsityPattern    sparsity(owned, owned, relevant, comm);
     std::vector<types::global_dof_index> indices;

@@ -15,6 +15,21 @@
  */
 namespace tissuefem::solid
 {
+  /// The vertices of the displacement dofs @p dofs, numbered as the first
+  /// component's dof divided by @p dim (a P1 system gives each vertex dim
+  /// consecutive dofs: NodalDilatationSystem::applies()).
+  IndexSet
+  vertex_set(const IndexSet &dofs, const unsigned int dim);
+
+  /// @p dofs and @p copies unknowns at each of their vertices, the k-th
+  /// numbered n_u + k n_vertices + vertex after the n_u = dofs.size()
+  /// displacement unknowns: the augmented system's unknowns that a process
+  /// owns (or needs) where it owns (needs) @p dofs.
+  IndexSet
+  with_vertex_unknowns(const IndexSet    &dofs,
+                       const unsigned int dim,
+                       const unsigned int copies);
+
   /// @p from's lines (Dirichlet values, no entries) on the augmented
   /// unknowns @p relevant, whose displacement part is numbered as
   /// @p from's.

@@ -151,6 +151,17 @@ namespace tissuefem::solid
              Vector<double>                  &r,
              FullMatrix<double>              *K) const;
 
+    /// Adds owned cell @p o's rows @p r and, with @p K, its block: into the
+    /// system (in place where its rows are owned and free, else through
+    /// the lifted constraints), else into @p residual through @p rows.
+    void
+    add_rows(const unsigned int               o,
+             const Vector<double>            &r,
+             const FullMatrix<double>        *K,
+             const AffineConstraints<double> &rows,
+             const bool                       inhomogeneous,
+             VectorType                      &residual);
+
     const NodalDilatation<dim> &nodal;
     const double                stabilization;
     /// Indices into nodal's cells of the owned ones; per owned cell the
@@ -158,17 +169,19 @@ namespace tissuefem::solid
     std::vector<unsigned int>                                 owned_cells;
     std::vector<std::array<types::global_dof_index, dim + 1>> vertex;
     std::vector<std::array<double, 2>>                        moduli;
-    types::global_dof_index n_u = 0, n_vertices = 0, n_active_cells = 0;
+    types::global_dof_index n_u = 0, n_active_cells = 0;
     IndexSet                owned_p, relevant_p;
     /// A and its factorization (Amesos' KLU: a scalar P1 matrix).
     MatrixType                                      A;
     SolverControl                                   control;
     std::unique_ptr<TrilinosWrappers::SolverDirect> factorization;
-    VectorType b, p, pressure; ///< b (writable ghosts), p, p ghosted
+    /// b (writable ghosts), its owned part, p, p ghosted.
+    VectorType b, owned_b, p, pressure;
     /// Per owned cell: F, J, J F^{-T}, pbar.
     std::vector<Tensor<2, dim>> F, cofactor;
     std::vector<double>         J, pbar;
-    /// The Newton system (build_system()).
+    /// The Newton system (build_system()); its unknowns owned and needed
+    /// here (set with the mesh).
     bool                      system_built = false;
     IndexSet                  owned, relevant;
     MatrixType                matrix;
