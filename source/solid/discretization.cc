@@ -42,6 +42,23 @@ namespace tissuefem::solid
       "quadrature loop. 'general': the quadrature loop everywhere (the "
       "reference the lean kernel is tested against; same results to "
       "round-off, several times slower on tetrahedra).");
+    prm.declare_entry(
+      "Mass",
+      "consistent",
+      Patterns::Selection("consistent|lumped"),
+      "The mass matrix of the equations of motion as the implicit "
+      "integrators (backward Euler, the linearly implicit Euler, the "
+      "quasi-Newton backward Euler, quasistatics' reactions) and the "
+      "kinetic energy, reaction and held forces use it: 'consistent' "
+      "(int rho N_a N_b dV) or 'lumped' (its row sums int rho N_a dV on the "
+      "diagonal, SOFA's DiagonalMass; Jeffrey's explicit scheme's mass). "
+      "Lumping lowers the frequencies of the discrete body (the consistent "
+      "mass overestimates them, the lumped one underestimates them: a "
+      "single linear bar element has omega^2 = 3 E/(rho L^2) consistent, 2 "
+      "E/(rho L^2) lumped) and makes the inertial term diagonal. Explicit and "
+      "first-order integrators (damped central difference, Radau IIA, "
+      "ARKode) always use the lumped mass. 'lumped' needs P1 or Q_k "
+      "elements: row sums of the P2 simplex's mass are not positive.");
     prm.leave_subsection();
   }
 
@@ -53,6 +70,7 @@ namespace tissuefem::solid
     degree            = prm.get_integer("Polynomial degree");
     quadrature_points = prm.get_integer("Quadrature points");
     lean_kernel       = prm.get("Element kernel") == "automatic";
+    lumped_mass       = prm.get("Mass") == "lumped";
     prm.leave_subsection();
   }
 
@@ -64,6 +82,7 @@ namespace tissuefem::solid
       : dof_handler(triangulation)
       , simplex(geometry::is_simplex_mesh(triangulation))
       , lean_kernel(parameters.lean_kernel)
+      , lumped_mass(parameters.lumped_mass)
   {
     const unsigned int k = parameters.degree;
     const unsigned int n_q
@@ -80,6 +99,13 @@ namespace tissuefem::solid
                 "Finite element/Quadrature points",
                 "must be at most 4 on triangles/tetrahedra, got "
                   + std::to_string(n_q));
+        // Row sums of the P2 simplex's mass are zero (triangle) or negative
+        // (tetrahedron) at the vertices.
+        require(k == 1 || !lumped_mass,
+                "Finite element/Mass",
+                "'lumped' needs linear triangles or tetrahedra (the P2 "
+                "simplex's row sums are not positive); use 'consistent' "
+                "with Polynomial degree = 2");
         fe = std::make_unique<FESystem<dim>>(FE_SimplexP<dim>(k), n_components);
         mapping         = std::make_unique<MappingFE<dim>>(FE_SimplexP<dim>(1));
         cell_quadrature = QGaussSimplex<dim>(n_q);

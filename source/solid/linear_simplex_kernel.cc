@@ -308,11 +308,14 @@ namespace tissuefem::solid
           r[k * dim + i] -= gravity_load(rho, V, input.gravity[i]);
     if (input.w)
       {
-        const int *G = &ghost[c * n_dofs];
+        const int *G      = &ghost[c * n_dofs];
+        const bool lumped = input.lumped_mass;
         for (unsigned int k = 0; k < n_nodes; ++k)
-          for (unsigned int l = 0; l < n_nodes; ++l)
+          for (unsigned int l = lumped ? k : 0; l < (lumped ? k + 1 : n_nodes);
+               ++l)
             for (unsigned int i = 0; i < dim; ++i)
-              r[k * dim + i] += mass(rho, V, k == l) * input.w[G[l * dim + i]];
+              r[k * dim + i]
+                += mass(rho, V, k == l, lumped) * input.w[G[l * dim + i]];
       }
     if (K)
       {
@@ -322,7 +325,8 @@ namespace tissuefem::solid
         for (unsigned int k = 0; k < n_nodes; ++k)
           for (unsigned int l = k; l < n_nodes; ++l)
             for (unsigned int i = 0; i < dim; ++i)
-              K[block(k, l) + i * dim + i] += shift * mass(rho, V, k == l);
+              K[block(k, l) + i * dim + i]
+                += shift * mass(rho, V, k == l, input.lumped_mass);
       }
   }
 

@@ -359,7 +359,8 @@ namespace tissuefem::solid
             const auto [l, d] = cell.node_component[j];
             if (d != c)
               continue;
-            const double m = Kernel::mass(rho, cell.volume, k == l);
+            const double m
+              = Kernel::mass(rho, cell.volume, k == l, loads.lumped_mass);
             r(i) += m * w[j];
             K(i, j) += loads.mass_coefficient * m;
           }

@@ -136,7 +136,10 @@ namespace tissuefem::solid
     const unsigned int n_scalar      = cache.n_scalar;
     const double      *JxW           = cache.JxW(c);
     const double       mass_jacobian = request.mass_jacobian_coefficient * rho;
-    Tensor<3, dim>     B;
+    // The lumped mass's row k is int rho N_k (the shape functions sum to
+    // one): inertia rho N_k w_k and Jacobian c rho N_k at the points.
+    const bool     lumped = discretization.lumped_mass;
+    Tensor<3, dim> B;
     for (unsigned int q = 0; q < cache.n_q; ++q)
       {
         const Tensor<2, dim> &P = s.cell.P[q];
@@ -156,7 +159,7 @@ namespace tissuefem::solid
               }
             load *= boundary_conditions.load_factor;
           }
-        if (request.inertia)
+        if (request.inertia && !lumped)
           for (unsigned int k = 0; k < n_scalar; ++k)
             load -= (rho * cache.values[q * n_scalar + k]) * s.W[k];
 
@@ -165,6 +168,8 @@ namespace tissuefem::solid
             const Tensor<1, dim> &g_k   = cache.gradient(c, q, k);
             const double          phi_k = cache.values[q * n_scalar + k];
             Tensor<1, dim>        r     = -phi_k * load;
+            if (request.inertia && lumped)
+              r += (rho * phi_k) * s.W[k];
             if (elastic)
               r += P * g_k;
             for (unsigned int a = 0; a < dim; ++a)
@@ -187,7 +192,9 @@ namespace tissuefem::solid
                   {
                     const Tensor<1, dim> &g_l = cache.gradient(c, q, l);
                     const double          mass_kl
-                      = mass_jacobian * phi_k * cache.values[q * n_scalar + l];
+                      = lumped ? (k == l ? mass_jacobian * phi_k : 0.)
+                               : mass_jacobian * phi_k
+                                   * cache.values[q * n_scalar + l];
                     for (unsigned int b = 0; b < dim; ++b)
                       {
                         const unsigned int j = cache.local_index[l * dim + b];
@@ -387,6 +394,7 @@ namespace tissuefem::solid
       {
         patch.inertia          = request.inertia;
         patch.mass_coefficient = request.mass_jacobian_coefficient;
+        patch.lumped_mass      = discretization.lumped_mass;
         if (request.external)
           patch.gravity
             = boundary_conditions.load_factor * boundary_conditions.gravity;

@@ -54,6 +54,7 @@ namespace tissuefem::solid
     input.u = request.u && elastic ? request.u->trilinos_vector()[0] : nullptr;
     input.w = request.inertia ? request.inertia->trilinos_vector()[0] : nullptr;
     input.mass_jacobian_coefficient = request.mass_jacobian_coefficient;
+    input.lumped_mass               = discretization.lumped_mass;
     boundary_conditions.set_time(request.time);
     input.gravity
       = boundary_conditions.load_factor * boundary_conditions.gravity;

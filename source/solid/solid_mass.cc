@@ -96,6 +96,20 @@ namespace tissuefem::solid
 
 
   template <int dim>
+  void
+  Solid<dim>::mass_vmult(VectorType &dst, const VectorType &src)
+  {
+    if (!discretization.lumped_mass)
+      {
+        mass_matrix().vmult(dst, src);
+        return;
+      }
+    dst = src;
+    dst.scale(lumped_mass());
+  }
+
+
+  template <int dim>
   double
   Solid<dim>::implicit_energy(const VectorType &u,
                               const VectorType &u_tilde,
@@ -127,7 +141,7 @@ namespace tissuefem::solid
         // As the residual's inertial term M w, w = c (u - u_tilde).
         VectorType difference(u), product(u);
         difference -= u_tilde;
-        mass_matrix().vmult(product, difference);
+        mass_vmult(product, difference);
         energy += 0.5 * mass_coefficient * (product * difference);
       }
     return energy;
@@ -246,6 +260,15 @@ namespace tissuefem::solid
   double
   Solid<dim>::kinetic_energy(const VectorType &v)
   {
+    if (discretization.lumped_mass)
+      {
+        // Hanging-node values follow their parents, as below.
+        VectorType x(v), product(v);
+        if (discretization.has_hanging_nodes)
+          discretization.hanging_node_constraints.distribute(x);
+        mass_vmult(product, x);
+        return 0.5 * (product * x);
+      }
     make_ghosted(v, ghosted_w);
     const unsigned int n_q = cache.n_q, n_scalar = cache.n_scalar;
     const unsigned int n      = cache.n_dofs;
@@ -331,19 +354,20 @@ namespace tissuefem::solid
 
 
   // The class is instantiated in solid.cc; these members here.
-#define TISSUEFEM_INSTANTIATE(dim)                                      \
-  template const MatrixType &Solid<dim>::mass_matrix();                 \
-  template const VectorType &Solid<dim>::lumped_mass();                 \
-  template double Solid<dim>::stored_energy(const VectorType &) const;  \
-  template double Solid<dim>::stored_energy_with(const VectorType &,    \
-                                                 const double *) const; \
-  template double Solid<dim>::kinetic_energy(const VectorType &);       \
-  template double Solid<dim>::implicit_energy(const VectorType &,       \
-                                              const VectorType &,       \
-                                              const double,             \
-                                              const double);            \
-  template const std::vector<std::vector<types::global_dof_index>>      \
-               &Solid<dim>::column_groups();                            \
+#define TISSUEFEM_INSTANTIATE(dim)                                          \
+  template const MatrixType &Solid<dim>::mass_matrix();                     \
+  template const VectorType &Solid<dim>::lumped_mass();                     \
+  template void   Solid<dim>::mass_vmult(VectorType &, const VectorType &); \
+  template double Solid<dim>::stored_energy(const VectorType &) const;      \
+  template double Solid<dim>::stored_energy_with(const VectorType &,        \
+                                                 const double *) const;     \
+  template double Solid<dim>::kinetic_energy(const VectorType &);           \
+  template double Solid<dim>::implicit_energy(const VectorType &,           \
+                                              const VectorType &,           \
+                                              const double,                 \
+                                              const double);                \
+  template const std::vector<std::vector<types::global_dof_index>>          \
+               &Solid<dim>::column_groups();                                \
   template bool Solid<dim>::has_hanging_nodes() const;
   TISSUEFEM_INSTANTIATE(1)
   TISSUEFEM_INSTANTIATE(2)

@@ -66,7 +66,7 @@ namespace tissuefem::time
         VectorType difference(u);
         difference -= u_tilde;
         shift.reinit(u);
-        solid.mass_matrix().vmult(shift, difference);
+        solid.mass_vmult(shift, difference);
         shift.sadd(-mass_coefficient, 1., residual);
         solid.zero_constrained_entries(shift);
         shift *= deferred_shift;
@@ -394,7 +394,7 @@ namespace tissuefem::time
     combination.sadd(c_damped - c, -c_damped, u_tilde);
     combination.add(c, undamped_u_tilde);
     context->solid.initialize_vector(force);
-    context->solid.mass_matrix().vmult(force, combination);
+    context->solid.mass_vmult(force, combination);
     force += shift;
     context->solid.zero_constrained_entries(force);
     step -= old_state.u;

@@ -34,6 +34,9 @@ namespace tissuefem::solid
     unsigned int quadrature_points;
     /// Whether linear simplices may use the lean element kernel.
     bool lean_kernel = true;
+    /// 'Mass' is 'lumped': the implicit integrators' mass is the row-sum
+    /// lumped one.
+    bool lumped_mass = false;
   };
 
   /**
@@ -99,6 +102,10 @@ namespace tissuefem::solid
     bool                                simplex;
     /// 'Finite element/Element kernel' is 'automatic'.
     bool lean_kernel = true;
+    /// 'Finite element/Mass' is 'lumped': inertia everywhere (implicit
+    /// residuals and Jacobians, energies, reactions) with the row-sum
+    /// lumped mass instead of the consistent one.
+    bool lumped_mass = false;
 
     IndexSet                  locally_owned;
     IndexSet                  locally_relevant;

@@ -62,14 +62,20 @@ namespace tissuefem::solid
       return (k * n_nodes - k * (k - 1) / 2 + (l - k)) * dim * dim;
     }
 
-    /// The P1 simplex's consistent mass between nodes k and l, per
-    /// component (the same component at both): rho V (1 + delta_kl) / ((d
-    /// + 1)(d + 2)), the exact integral of two barycentric coordinates
-    /// over the simplex. Shared with the nodal dilatation's cell blocks
+    /// The P1 simplex's mass between nodes k and l, per component (the
+    /// same component at both). Consistent: rho V (1 + delta_kl) / ((d +
+    /// 1)(d + 2)), the exact integral of two barycentric coordinates over
+    /// the simplex; @p lumped, its row sums on the diagonal: delta_kl rho V
+    /// / (d + 1). Shared with the nodal dilatation's cell blocks
     /// (NodalDilatationSystem::Loads).
     static constexpr double
-    mass(const double rho, const double V, const bool same_node)
+    mass(const double rho,
+         const double V,
+         const bool   same_node,
+         const bool   lumped = false)
     {
+      if (lumped)
+        return same_node ? rho * V / (dim + 1) : 0.;
       return (same_node ? 2. : 1.) * rho * V / ((dim + 1) * (dim + 2));
     }
 
@@ -109,9 +115,11 @@ namespace tissuefem::solid
     /// What one evaluation computes (see Solid's Request).
     struct Input
     {
-      const double  *u = nullptr; ///< ghosted displacement, or null (zero)
-      const double  *w = nullptr; ///< ghosted inertia vector, or null
-      double         mass_jacobian_coefficient = 0;
+      const double *u = nullptr; ///< ghosted displacement, or null (zero)
+      const double *w = nullptr; ///< ghosted inertia vector, or null
+      double        mass_jacobian_coefficient = 0;
+      /// The mass is the row-sum lumped one ('Finite element/Mass').
+      bool           lumped_mass = false;
       Tensor<1, dim> gravity;
       bool           internal = true;
       bool           external = true;

@@ -78,6 +78,8 @@ namespace tissuefem::solid
       const VectorType *inertia = nullptr;
       /// The Jacobian gets this times M.
       double mass_coefficient = 0;
+      /// M is the row-sum lumped mass ('Finite element/Mass').
+      bool lumped_mass = false;
       /// Acceleration of gravity, load factor included (length/time^2);
       /// the residual gets minus its load.
       Tensor<1, dim> gravity;

@@ -87,7 +87,7 @@ namespace tissuefem::solid
     /**
      * The residual of one implicit step,
      *   R(u) = c M (u - u_tilde) + f_int(u) - f_ext(t),
-     * with the consistent mass, and on request its Jacobian c M + K(u)
+     * with the mass of mass_vmult(), and on request its Jacobian c M + K(u)
      * (kept in jacobian()). c = 0 is quasistatics. Throws SolverError
      * (InvertedElementError) for states the model cannot evaluate.
      */
@@ -372,6 +372,14 @@ namespace tissuefem::solid
     mass_matrix()
       = 0;
 
+    /// @p dst = M @p src with the mass the equations of motion use (the
+    /// consistent one, or the lumped one under 'Finite element/Mass =
+    /// lumped'), without constraints: the inertial term of
+    /// implicit_residual() and its energy.
+    virtual void
+    mass_vmult(VectorType &dst, const VectorType &src)
+      = 0;
+
     /// The row-sum lumped mass (one entry per degree of freedom).
     virtual const VectorType &
     lumped_mass()
@@ -381,7 +389,7 @@ namespace tissuefem::solid
     virtual double
     stored_energy(const VectorType &u) const = 0;
 
-    /// 1/2 v^T M v with the consistent mass (energy units).
+    /// 1/2 v^T M v with the mass of mass_vmult() (energy units).
     virtual double
     kinetic_energy(const VectorType &v)
       = 0;

@@ -178,6 +178,9 @@ namespace tissuefem::solid
     const VectorType &
     lumped_mass() override;
 
+    void
+    mass_vmult(VectorType &dst, const VectorType &src) override;
+
     const std::vector<std::vector<types::global_dof_index>> &
     column_groups() override;
 

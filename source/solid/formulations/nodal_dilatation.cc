@@ -136,6 +136,7 @@ namespace tissuefem::solid::formulations
       {
         cell_loads.inertia          = request.inertia;
         cell_loads.mass_coefficient = request.mass_coefficient;
+        cell_loads.lumped_mass      = request.lumped_mass;
         cell_loads.gravity          = request.gravity;
       }
     const auto undefined

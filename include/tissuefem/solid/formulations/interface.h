@@ -172,7 +172,9 @@ namespace tissuefem::solid::formulations
     bool              loads            = false;
     const VectorType *inertia          = nullptr;
     double            mass_coefficient = 0;
-    Tensor<1, dim>    gravity;
+    /// The mass is the row-sum lumped one ('Finite element/Mass').
+    bool           lumped_mass = false;
+    Tensor<1, dim> gravity;
   };
 
   /// (active cell index, det F, centre) of a cell whose state is undefined.
