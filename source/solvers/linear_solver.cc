@@ -58,6 +58,40 @@ namespace tissuefem::solvers
   {
     matrix = nullptr;
     method->reset();
+    if (background)
+      background->reset();
+  }
+
+
+  void
+  LinearSolver::factorize_in_background(const bool         on,
+                                        const std::string &parameter)
+  {
+    if (!on)
+      {
+        background.reset();
+        return;
+      }
+    require(type == "KLU",
+            parameter,
+            "needs 'Linear solver/Type = KLU' (the factorizing thread runs "
+            "Amesos' KLU on a serial copy of the matrix), not '"
+              + type + "'");
+    require(Utilities::MPI::n_mpi_processes(parallel_tools::communicator())
+              == 1,
+            parameter,
+            "needs one MPI process (the factorizing thread may make no MPI "
+            "call)");
+    if (!background)
+      background = std::make_unique<BackgroundFactorization>();
+  }
+
+
+  void
+  LinearSolver::wait_for_background()
+  {
+    if (background)
+      background->wait(stats);
   }
 
 
@@ -81,7 +115,10 @@ namespace tissuefem::solvers
     std::string failure;
     try
       {
-        method->solve(A, x, b, refactorize, relative_tolerance, stats);
+        if (background)
+          background->solve(A, x, b, refactorize, stats);
+        else
+          method->solve(A, x, b, refactorize, relative_tolerance, stats);
       }
     catch (const SolverError &e)
       {

@@ -50,7 +50,8 @@ namespace tissuefem::time
     {
       prm.enter_subsection("Time integration");
       prm.enter_subsection("Linearly implicit Euler");
-      interval = prm.get_integer("Factorization interval");
+      interval   = prm.get_integer("Factorization interval");
+      background = prm.get_bool("Background factorization");
       prm.leave_subsection();
       prm.leave_subsection();
     }
@@ -74,13 +75,40 @@ namespace tissuefem::time
         "back-substitution instead of a factorization: what steps at a "
         "haptic rate need. Runs with n > 1 cannot be checkpointed "
         "bit-identically.");
+      prm.declare_entry(
+        "Background factorization",
+        "false",
+        Patterns::Bool(),
+        "Whether factorizations are made on a thread of its own, from a "
+        "copy of the step's M/h^2 + K, while the steps go on solving with "
+        "the last one finished (adopted at the first step after it "
+        "finishes). One is asked for every 'Factorization interval'/2 "
+        "steps (at least every step) and adopted at the latest when the "
+        "next is asked for, so that the factors in use are at most "
+        "'Factorization interval' - 1 steps old, as without it. No step "
+        "then waits for a factorization except the first and those after a "
+        "change of step size, constraints or mesh: the haptic loop's 95th "
+        "percentile becomes a back-substitution's instead of a "
+        "factorization's (doc/studies.md, 'Speed, measured'). "
+        "Needs 'Linear solver/Type = KLU' and one MPI process; the answer "
+        "depends on when the thread finishes (exact for a linear body, "
+        "whose matrix does not change), so runs cannot be checkpointed.");
       prm.leave_subsection();
     }
 
     bool
     checkpointable() const override
     {
-      return interval == 1;
+      return interval == 1 && !background;
+    }
+
+    void
+    initialize(Context &c, State &state) override
+    {
+      ImplicitOneStep::initialize(c, state);
+      c.linear_solver.factorize_in_background(
+        background,
+        "Time integration/Linearly implicit Euler/Background factorization");
     }
 
     /// Contact multipliers are not updated: one linear solve a step.
@@ -146,8 +174,21 @@ namespace tissuefem::time
           // At u_n with its old prescribed values, one iteration with the
           // Jacobian M/h^2 + K(u_n); a kept factorization serves while it
           // is recent and of this step size (see 'Factorization interval').
-          const bool fresh
-            = std::abs(h - factorized_step) > 1e-12 * h || age + 1 >= interval;
+          // In the background a factorization is asked for every
+          // interval/2 steps: the one asked for before is adopted when the
+          // next is (at the latest), so the factors in use are at most
+          // 'Factorization interval' - 1 steps old, as without it. (Lags
+          // of up to twice that made the muscle's swing after its release
+          // unstable at dt = 2 ms, as a synchronous interval of 20 does.)
+          const unsigned int period
+            = background ? std::max(1u, interval / 2) : interval;
+          const bool new_size = std::abs(h - factorized_step) > 1e-12 * h;
+          const bool fresh    = new_size || age + 1 >= period;
+          // Factors of another step size are no Jacobian of this step's:
+          // a background factorization is then waited for (reset()
+          // leaves none to solve with).
+          if (background && new_size)
+            context->linear_solver.reset();
           lift_boundary_increment(c, t_new, next.u, report, fresh);
           age             = fresh ? 0 : age + 1;
           factorized_step = h;
@@ -203,6 +244,8 @@ namespace tissuefem::time
 
     /// 'Factorization interval'.
     unsigned int interval = 1;
+    /// 'Background factorization'.
+    bool background = false;
     /// The step size of the kept factorization (0: none usable) and the
     /// steps it has served since it was made.
     double       factorized_step = 0;

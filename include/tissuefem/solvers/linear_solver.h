@@ -3,6 +3,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <tissuefem/base/parallel.h>
+#include <tissuefem/solvers/background_factorization.h>
 #include <tissuefem/solvers/linear/interface.h>
 
 #include <memory>
@@ -91,6 +92,29 @@ namespace tissuefem::solvers
       return method->direct();
     }
 
+    /**
+     * With @p on, solve() with @p refactorize true no longer waits for the
+     * factorization: it is made on a thread of its own from a copy of the
+     * matrix, and solves go on with the last one finished
+     * (BackgroundFactorization), for W-methods whose steps may use a
+     * Jacobian of a few steps before. Needs 'Type = KLU' and one MPI
+     * process; @p parameter is named in the error otherwise.
+     */
+    void
+    factorize_in_background(const bool on, const std::string &parameter);
+
+    /// Waits for a background factorization and adopts it (for tests).
+    void
+    wait_for_background();
+
+    /// Solves that used a background factorization of an older matrix
+    /// than their own (0 without background factorization).
+    unsigned int
+    lagged_solves() const
+    {
+      return background ? background->lagged_solves() : 0;
+    }
+
     /// The name the method was chosen by ('direct' reads 'MUMPS').
     const std::string &
     name() const
@@ -107,6 +131,8 @@ namespace tissuefem::solvers
   private:
     std::string                        type;
     std::unique_ptr<linear::Interface> method;
+    /// Set by factorize_in_background(true): then it solves, not method.
+    std::unique_ptr<BackgroundFactorization> background;
     /// The matrix object the method's kept state belongs to.
     const void            *matrix = nullptr;
     LinearSolverStatistics stats;
