@@ -220,6 +220,25 @@ namespace tissuefem_tests
     std::streambuf    *screen;
   };
 
+  /// While it lives, std::cout is discarded (a run's progress lines).
+  class Muted
+  {
+  public:
+    Muted()
+        : screen(std::cout.rdbuf(muted.rdbuf()))
+    {
+    }
+
+    ~Muted()
+    {
+      std::cout.rdbuf(screen);
+    }
+
+  private:
+    std::ostringstream muted;
+    std::streambuf    *screen;
+  };
+
   /// The exit status: non-zero if any check failed.
   inline int
   exit_status()

@@ -162,6 +162,24 @@ namespace tissuefem_tests
   }
 
 
+  /// u(1) of backward Euler on the one-element bar's m u'' + u = 0 (k = 1)
+  /// from u = 0.01 at rest in @p steps steps of 1/steps: the recursion
+  /// (m + h^2) v_{n+1} = m v_n - h u_n, u_{n+1} = u_n + h v_{n+1}, with
+  /// @p m the bar's mass (1/3 consistent, 1/2 lumped).
+  inline double
+  one_element_bar_backward_euler(const double m, const unsigned int steps = 50)
+  {
+    double       u = 0.01, v = 0;
+    const double h = 1. / steps;
+    for (unsigned int n = 0; n < steps; ++n)
+      {
+        v = (m * v - h * u) / (m + h * h);
+        u += h * v;
+      }
+    return u;
+  }
+
+
   /// Builds the scene of @p prm with 'Time step' @p step and 'End time'
   /// @p end_time, runs its integrator from the initial state to the end and
   /// returns the largest |u| (the single free node's displacement in the
