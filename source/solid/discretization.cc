@@ -57,7 +57,8 @@ namespace tissuefem::solid
       "single linear bar element has omega^2 = 3 E/(rho L^2) consistent, 2 "
       "E/(rho L^2) lumped) and makes the inertial term diagonal. Explicit and "
       "first-order integrators (damped central difference, Radau IIA, "
-      "ARKode) always use the lumped mass. 'lumped' needs P1 or Q_k "
+      "ARKode) step with the lumped mass whatever this says; the kinetic "
+      "energy and forces they report follow it. 'lumped' needs P1 or Q_k "
       "elements: row sums of the P2 simplex's mass are not positive.");
     prm.leave_subsection();
   }

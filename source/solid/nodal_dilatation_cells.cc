@@ -336,7 +336,7 @@ namespace tissuefem::solid
                                         FullMatrix<double> &K,
                                         Vector<double>     &r) const
   {
-    // The P1 simplex's consistent mass and gravity load, as
+    // The P1 simplex's mass (consistent or lumped) and gravity load, as
     // LinearSimplexKernel::cell_objects() adds them.
     using Kernel                            = LinearSimplexKernel<dim>;
     const auto                        &cell = nodal.cells[g];

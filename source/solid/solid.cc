@@ -295,11 +295,13 @@ namespace tissuefem::solid
     request.u = &ghosted_u;
     if (mass_coefficient != 0)
       {
-        // The inertial term c M (u - u_tilde) is M w with w = c (u - u_tilde).
+        // The inertial term c M (u - u_tilde) is M w with w = c (u -
+        // u_tilde), its hanging-node values from their parents (Newton
+        // leaves them stale in u).
         VectorType w(u);
         w -= u_tilde;
         w *= mass_coefficient;
-        ghosted_w       = w;
+        make_ghosted(w, ghosted_w);
         request.inertia = &ghosted_w;
       }
     request.mass_jacobian_coefficient = mass_coefficient;

@@ -99,13 +99,42 @@ namespace tissuefem::solid
   void
   Solid<dim>::mass_vmult(VectorType &dst, const VectorType &src)
   {
-    if (!discretization.lumped_mass)
+    // C^T M C src, C the hanging-node interpolation: the residual's
+    // inertial term is assembled through the constraints, so products
+    // that are subtracted from it or give its energy must be condensed
+    // alike (without hanging nodes C = I).
+    VectorType x(src);
+    const auto &hanging = discretization.hanging_node_constraints;
+    if (discretization.has_hanging_nodes)
+      hanging.distribute(x);
+    if (discretization.lumped_mass)
       {
-        mass_matrix().vmult(dst, src);
-        return;
+        dst = x;
+        dst.scale(lumped_mass());
       }
-    dst = src;
-    dst.scale(lumped_mass());
+    else
+      {
+        dst.reinit(x, true);
+        mass_matrix().vmult(dst, x);
+      }
+    if (!discretization.has_hanging_nodes)
+      return;
+    // A hanging row goes to its parents' rows.
+    VectorType condensed;
+    discretization.initialize_assembly_vector(condensed);
+    Vector<double>                       row(1);
+    std::vector<types::global_dof_index> index(1);
+    for (const auto i : discretization.locally_owned)
+      if (hanging.is_constrained(i))
+        {
+          row[0]   = dst[i];
+          index[0] = i;
+          hanging.distribute_local_to_global(row, index, condensed);
+        }
+      else
+        condensed[i] += dst[i];
+    condensed.compress(VectorOperation::add);
+    dst = condensed;
   }
 
 
@@ -138,7 +167,8 @@ namespace tissuefem::solid
            .count();
     if (mass_coefficient != 0)
       {
-        // As the residual's inertial term M w, w = c (u - u_tilde).
+        // As the residual's inertial term M w, w = c (u - u_tilde), with
+        // hanging-node values following their parents (mass_vmult()).
         VectorType difference(u), product(u);
         difference -= u_tilde;
         mass_vmult(product, difference);

@@ -34,7 +34,8 @@ namespace tissuefem::solvers
 
     /// The numeric factorization of the values copied last (the symbolic
     /// analysis on first use); returns its seconds. Runs on the
-    /// background thread: no MPI, no output.
+    /// background thread: no MPI communication (the copy's communicator
+    /// is serial; Amesos' timers call MPI_Wtime, which makes none).
     double
     factorize()
     {
@@ -118,9 +119,10 @@ namespace tissuefem::solvers
                                         copy_values,
                                         copy_indices);
         // Rows of an assembled matrix are sorted, so FillComplete kept
-        // their order.
-        Assert(length == copy_length
-                 && std::equal(indices, indices + length, copy_indices),
+        // their order; a layout change resets the copies first
+        // (LinearSolver::reset()), checked here before the copy.
+        AssertThrow(length == copy_length, ExcInternalError());
+        Assert(std::equal(indices, indices + length, copy_indices),
                ExcInternalError());
         std::memcpy(copy_values, values, length * sizeof(double));
       }

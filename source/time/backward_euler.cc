@@ -216,6 +216,6 @@ namespace tissuefem::time
   TISSUEFEM_REGISTER_INTEGRATOR(
     BackwardEuler,
     "backward Euler",
-    "implicit first-order dynamics with consistent mass (Teran problem "
+    "implicit first-order dynamics (Teran problem "
     "session eqs 3-6), fixed step or adaptive from a local error estimate.")
 } // namespace tissuefem::time

@@ -90,7 +90,8 @@ namespace tissuefem::time
         "change of step size, constraints or mesh: the haptic loop's 95th "
         "percentile becomes a back-substitution's instead of a "
         "factorization's (doc/studies.md, 'Speed, measured'). "
-        "Needs 'Linear solver/Type = KLU' and one MPI process; the answer "
+        "Needs 'Factorization interval' of 2 or more, 'Linear solver/Type "
+        "= KLU' and one MPI process; the answer "
         "depends on when the thread finishes (exact for a linear body, "
         "whose matrix does not change), so runs cannot be checkpointed.");
       prm.leave_subsection();
@@ -106,6 +107,13 @@ namespace tissuefem::time
     initialize(Context &c, State &state) override
     {
       ImplicitOneStep::initialize(c, state);
+      // With an interval of 1 every step factorizes its own matrix; in the
+      // background it would solve with the step's before.
+      require(!background || interval >= 2,
+              "Time integration/Linearly implicit Euler/Background "
+              "factorization",
+              "needs 'Factorization interval' of 2 or more (got 1: every "
+              "step factorizes its own matrix)");
       c.linear_solver.factorize_in_background(
         background,
         "Time integration/Linearly implicit Euler/Background factorization");

@@ -226,6 +226,30 @@ namespace
     tissuefem_tests::check(scene.linear_solver->lagged_solves() > 0,
                            "bar: solves used lagged factors",
                            "none did");
+
+    // An interval of 1 factorizes every step's own matrix: refused.
+    ParameterHandler every_step;
+    declare_all_parameters(every_step);
+    every_step.parse_input_from_string(tissuefem_tests::one_element_bar(R"(
+      set Integrator = linearly implicit Euler
+      subsection Linearly implicit Euler
+        set Background factorization = true
+      end
+)") + "subsection Linear solver\n set Type = KLU\nend\n");
+    tissuefem_tests::SolidScene<1> refused(every_step);
+    std::string                    message;
+    try
+      {
+        refused.start(every_step);
+      }
+    catch (const InputError &e)
+      {
+        message = e.what();
+      }
+    tissuefem_tests::check(message.find("Factorization interval")
+                             != std::string::npos,
+                           "bar: an interval of 1 refused, naming it",
+                           "message '" + message + "'");
   }
 
 

@@ -26,6 +26,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/fe/fe_values.h>
 
+#include <tissuefem/adaptation/mesh_adaptation.h>
 #include <tissuefem/app/parameters.h>
 
 #include "../tests.h"
@@ -126,16 +127,22 @@ namespace
   double
   check_scene(const std::string &text,
               const std::string &name,
-              const bool         lumped)
+              const bool         lumped,
+              const bool         own_system = false)
   {
     ParameterHandler prm;
     declare_all_parameters(prm);
     prm.parse_input_from_string(text);
     tissuefem_tests::SolidScene<dim> scene(prm);
     auto                            &solid = *scene.solid;
-    const auto                      &disc  = *scene.discretization;
-    tissuefem_tests::Random          random(20261129);
-    VectorType                       u, u_tilde, r_c, r_0;
+    // The nodal dilatation's own Newton system takes the inertia into its
+    // cell blocks (NodalDilatationSystem::add_loads): its residual is
+    // checked, its matrix is not the solid's.
+    if (own_system)
+      solid.solve_only_through_operators(true, *scene.linear_solver);
+    const auto             &disc = *scene.discretization;
+    tissuefem_tests::Random random(20261129);
+    VectorType              u, u_tilde, r_c, r_0;
     solid.initialize_vector(u);
     solid.initialize_vector(u_tilde);
     for (const auto i : u.locally_owned_elements())
@@ -149,12 +156,15 @@ namespace
     // The nodal pressure's Jacobian is its own system's (the displacement
     // block's inertia comes from the lean kernel, checked on P1).
     const bool with_jacobian
-      = prm.get({"Materials"}, "Formulation") != "nodal pressure";
+      = prm.get({"Materials"}, "Formulation") != "nodal pressure"
+        && !own_system;
     FullMatrix<double> J_c(n, n), J_0(n, n);
-    solid.implicit_residual(u, u_tilde, c, 0., r_c, with_jacobian);
+    solid.implicit_residual(
+      u, u_tilde, c, 0., r_c, with_jacobian || own_system);
     if (with_jacobian)
       J_c = dense(solid.jacobian(), n);
-    solid.implicit_residual(u, u_tilde, 0., 0., r_0, with_jacobian);
+    solid.implicit_residual(
+      u, u_tilde, 0., 0., r_0, with_jacobian || own_system);
     if (with_jacobian)
       J_0 = dense(solid.jacobian(), n);
     const Vector<double> m = row_sums(disc);
@@ -222,16 +232,19 @@ namespace
              const unsigned int degree,
              const std::string &kernel,
              const std::string &formulation,
-             const std::string &label)
+             const std::string &label,
+             const bool         own_system = false)
   {
     const std::string name = std::to_string(dim) + "D " + label;
     check_scene<dim>(scene(dim, cells, degree, kernel, formulation, "lumped"),
                      name,
-                     true);
+                     true,
+                     own_system);
     const double consistent_miss = check_scene<dim>(
       scene(dim, cells, degree, kernel, formulation, "consistent"),
       name,
-      false);
+      false,
+      own_system);
     tissuefem_tests::check(consistent_miss > 0.01,
                            name
                              + ": the consistent mass's difference misses "
@@ -239,6 +252,62 @@ namespace
                            "relative miss " + std::to_string(consistent_miss));
   }
 
+
+  /**
+   * On a mesh with hanging nodes (Q1, a third of the cells refined once)
+   * with @p mass: the implicit residual is the derivative of the implicit
+   * energy and the Jacobian the residual's, at a state whose hanging-node
+   * values are stale (Newton leaves them so) along a direction that is
+   * zero on them (as Newton's updates are): the inertia must follow the
+   * parents' values in both.
+   */
+  void
+  check_hanging_nodes(const std::string &mass)
+  {
+    ParameterHandler prm;
+    declare_all_parameters(prm);
+    prm.parse_input_from_string(
+      scene(2, "hypercube", 1, "automatic", "displacement", mass) + R"(
+    subsection Mesh refinement
+      set Indicator       = Kelly
+      set Refine fraction = 0.3
+      set Maximum levels  = 1
+    end
+  )");
+    tissuefem_tests::SolidScene<2>       scene(prm);
+    auto                                &solid = *scene.solid;
+    adaptation::MeshRefinementParameters refinement;
+    refinement.parse_parameters(prm);
+    adaptation::MeshAdaptation<2> adaptation(refinement,
+                                             scene.triangulation,
+                                             solid);
+    tissuefem_tests::Random       random(20261130);
+    VectorType                    u, u_tilde, d;
+    solid.initialize_vector(u);
+    for (const auto i : u.locally_owned_elements())
+      u[i] = 0.03 * random.uniform() * (1 + i % 3);
+    adaptation.adapt(u, 0., 0.05, {&u});
+    const std::string name = "2D Q1 with hanging nodes, " + mass + " mass";
+    tissuefem_tests::check(solid.has_hanging_nodes(),
+                           name + ": the mesh has hanging nodes",
+                           "none");
+    solid.initialize_vector(u);
+    solid.initialize_vector(u_tilde);
+    solid.initialize_vector(d);
+    for (const auto i : u.locally_owned_elements())
+      {
+        u[i]       = 0.03 * random.uniform();
+        u_tilde[i] = 0.05 * random.uniform();
+        d[i]       = random.uniform() - 0.5;
+      }
+    solid.apply_dirichlet_values(0., u);
+    const auto &hanging = scene.discretization->hanging_node_constraints;
+    for (const auto i : u.locally_owned_elements())
+      if (hanging.is_constrained(i))
+        u[i] += 0.02;
+    solid.zero_constrained_entries(d);
+    tissuefem_tests::check_derivatives(solid, u, u_tilde, 3., 0., d, name);
+  }
 
   void
   check_integrators()
@@ -287,8 +356,16 @@ main(int argc, char **argv)
     "simplex", 1, "automatic", "nodal dilatation", "P1 nodal dilatation");
   check_path<3>(
     "simplex", 1, "automatic", "nodal pressure", "P1 nodal pressure");
+  check_path<3>("simplex",
+                1,
+                "automatic",
+                "nodal dilatation",
+                "P1 nodal dilatation, own system",
+                true);
   check_path<2>(
     "hypercube", 1, "automatic", "mean dilatation", "Q1 mean dilatation");
+  check_hanging_nodes("lumped");
+  check_hanging_nodes("consistent");
   check_integrators();
   return tissuefem_tests::exit_status();
 }

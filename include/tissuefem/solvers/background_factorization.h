@@ -29,8 +29,10 @@ namespace tissuefem::solvers
    *   had.
    *
    * One MPI process only: the copy lives on an Epetra_SerialComm, so that
-   * the factorizing thread makes no MPI call while the caller's thread
-   * may (deal.II initializes MPI with MPI_THREAD_SERIALIZED). The result
+   * the factorizing thread communicates over no MPI communicator while
+   * the caller's thread may (deal.II initializes MPI with
+   * MPI_THREAD_SERIALIZED; Amesos' timers still call MPI_Wtime, a local
+   * clock read in Open MPI and MPICH). The result
    * depends on when the thread finishes; for a matrix that does not
    * change (a linear body at a fixed step) every factorization is of the
    * same matrix and the answers are exact.

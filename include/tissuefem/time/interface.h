@@ -83,7 +83,7 @@ namespace tissuefem::time
     /// Energy taken out by the integrator's damping force in this call
     /// (energy units; 0 without damping).
     double damping_work = 0;
-    /// Stored (int Psi dV) and kinetic (1/2 v.M v, consistent mass)
+    /// Stored (int Psi dV) and kinetic (1/2 v.M v, Operators::kinetic_energy)
     /// energy of the state reached (set by the caller of advance()).
     double stored_energy  = 0;
     double kinetic_energy = 0;
