@@ -103,10 +103,15 @@ namespace tissuefem::solid
     // inertial term is assembled through the constraints, so products
     // that are subtracted from it or give its energy must be condensed
     // alike (without hanging nodes C = I).
-    VectorType x(src);
-    const auto &hanging = discretization.hanging_node_constraints;
-    if (discretization.has_hanging_nodes)
-      hanging.distribute(x);
+    const bool  hanging_nodes = discretization.has_hanging_nodes;
+    const auto &hanging       = discretization.hanging_node_constraints;
+    VectorType  distributed;
+    if (hanging_nodes)
+      {
+        distributed = src;
+        hanging.distribute(distributed);
+      }
+    const VectorType &x = hanging_nodes ? distributed : src;
     if (discretization.lumped_mass)
       {
         dst = x;
@@ -117,24 +122,14 @@ namespace tissuefem::solid
         dst.reinit(x, true);
         mass_matrix().vmult(dst, x);
       }
-    if (!discretization.has_hanging_nodes)
+    if (!hanging_nodes)
       return;
-    // A hanging row goes to its parents' rows.
-    VectorType condensed;
-    discretization.initialize_assembly_vector(condensed);
-    Vector<double>                       row(1);
-    std::vector<types::global_dof_index> index(1);
-    for (const auto i : discretization.locally_owned)
-      if (hanging.is_constrained(i))
-        {
-          row[0]   = dst[i];
-          index[0] = i;
-          hanging.distribute_local_to_global(row, index, condensed);
-        }
-      else
-        condensed[i] += dst[i];
-    condensed.compress(VectorOperation::add);
-    dst = condensed;
+    // A hanging row goes to its parents' rows (deal.II's condense() reads
+    // the hanging rows owned elsewhere from a ghosted copy).
+    VectorType ghosted;
+    discretization.initialize_vector(ghosted, true);
+    ghosted = dst;
+    hanging.condense(ghosted, dst);
   }
 
 
@@ -292,12 +287,11 @@ namespace tissuefem::solid
   {
     if (discretization.lumped_mass)
       {
-        // Hanging-node values follow their parents, as below.
-        VectorType x(v), product(v);
-        if (discretization.has_hanging_nodes)
-          discretization.hanging_node_constraints.distribute(x);
-        mass_vmult(product, x);
-        return 0.5 * (product * x);
+        // C^T M C v . v: hanging-node values follow their parents, as
+        // below.
+        VectorType product(v);
+        mass_vmult(product, v);
+        return 0.5 * (product * v);
       }
     make_ghosted(v, ghosted_w);
     const unsigned int n_q = cache.n_q, n_scalar = cache.n_scalar;

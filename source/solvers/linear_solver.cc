@@ -80,8 +80,8 @@ namespace tissuefem::solvers
     require(Utilities::MPI::n_mpi_processes(parallel_tools::communicator())
               == 1,
             parameter,
-            "needs one MPI process (the factorizing thread may make no MPI "
-            "call)");
+            "needs one MPI process (the factorizing thread's copy of the "
+            "matrix lives on a serial communicator)");
     if (!background)
       background = std::make_unique<BackgroundFactorization>();
   }
