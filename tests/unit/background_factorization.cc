@@ -38,6 +38,7 @@
 #include <tissuefem/solvers/linear_solver.h>
 
 #include "../tests.h"
+#include "laplacian.h"
 #include "solid_scene.h"
 
 #include <cmath>
@@ -58,36 +59,12 @@ namespace
             const double       shift,
             const bool         singular = false)
   {
-    const unsigned int n = m * m;
-    if (A.m() != n)
-      {
-        TrilinosWrappers::SparsityPattern pattern(complete_index_set(n),
-                                                  MPI_COMM_WORLD);
-        for (unsigned int i = 0; i < n; ++i)
-          for (const long j : {long(i) - long(m),
-                               long(i) - 1,
-                               long(i),
-                               long(i) + 1,
-                               long(i) + long(m)})
-            if (j >= 0 && j < long(n))
-              pattern.add(i, j);
-        pattern.compress();
-        A.reinit(pattern);
-      }
-    for (unsigned int i = 0; i < n; ++i)
-      {
-        const unsigned int x = i % m, y = i / m;
-        const double       s = singular && i + 1 == n ? 0. : 1.;
-        A.set(i, i, s * (4. + shift));
-        if (x > 0)
-          A.set(i, i - 1, -s);
-        if (x + 1 < m)
-          A.set(i, i + 1, -s);
-        if (y > 0)
-          A.set(i, i - m, -s);
-        if (y + 1 < m)
-          A.set(i, i + m, -s);
-      }
+    tissuefem_tests::laplacian(A, m, false, 1., shift);
+    if (!singular)
+      return;
+    const unsigned int last = m * m - 1;
+    for (const unsigned int j : {last - m, last - 1, last})
+      A.set(last, j, 0.);
     A.compress(VectorOperation::insert);
   }
 
