@@ -6,6 +6,7 @@
 #include <tissuefem/adaptation/indicator.h>
 #include <tissuefem/adaptation/mesh_adaptation.h>
 #include <tissuefem/base/input_error.h>
+#include <tissuefem/geometry/distribution.h>
 
 #include <algorithm>
 
@@ -98,6 +99,10 @@ namespace tissuefem::adaptation
             "adaptive refinement needs quadrilaterals/hexahedra: deal.II "
             "9.4 cannot refine triangles/tetrahedra locally (use 'none', "
             "or 'Geometry/Global refinements' for uniform refinement)");
+    // A fully distributed mesh of deal.II 9.4 cannot be refined.
+    geometry::require_whole_mesh(triangulation,
+                                 "Mesh refinement/Indicator",
+                                 "adaptive refinement");
     estimator = IndicatorRegistry<dim>::instance().create(parameters.indicator);
   }
 

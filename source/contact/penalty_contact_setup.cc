@@ -1,7 +1,7 @@
-#include <deal.II/grid/grid_tools.h>
 
 #include <tissuefem/base/input_error.h>
 #include <tissuefem/contact/penalty_contact.h>
+#include <tissuefem/geometry/distribution.h>
 
 namespace tissuefem::contact
 {
@@ -101,7 +101,7 @@ namespace tissuefem::contact
     const auto &triangulation = discretization.dof_handler.get_triangulation();
     if (tolerance == 0 || start_tolerance == 0)
       {
-        const double diameter = GridTools::diameter(triangulation);
+        const double diameter = geometry::diameter(triangulation);
         if (tolerance == 0)
           tolerance = 1e-4 * diameter;
         if (start_tolerance == 0)

@@ -132,6 +132,24 @@ namespace tissuefem::geometry
         "Entries 'id: expression' separated by '|', e.g. '1: x > 0.5'. Each "
         "cell whose centre makes the expression non-zero gets the material "
         "id (see 'Materials/Material ids'); later entries win.");
+      prm.declare_entry(
+        "Mesh distribution",
+        "shared",
+        Patterns::Selection("shared|distributed"),
+        "How the mesh of the elasticity problem is spread over the MPI "
+        "processes of a run (mpirun -np N); METIS gives each process the same "
+        "part of the cells to assemble "
+        "either way, so results agree to the linear solver's tolerance. "
+        "'shared': every process holds the whole mesh (deal.II's "
+        "parallel::shared::Triangulation). 'distributed': each process holds "
+        "its own cells and the layer around them "
+        "(parallel::fullydistributed::Triangulation), so that memory per "
+        "process falls with the number of processes; the whole mesh is built "
+        "and checked on every process first and freed before the unknowns "
+        "are numbered. What needs every process to hold the whole mesh is "
+        "refused with 'distributed', naming its parameter: adaptive "
+        "refinement, tools, the live view, a numerically differenced "
+        "Jacobian. One process: the same as 'shared'.");
     }
     prm.leave_subsection();
   }
@@ -155,6 +173,9 @@ namespace tissuefem::geometry
     global_refinements        = prm.get_integer("Global refinements");
     boundary_id_predicates    = prm.get("Boundary id predicates");
     material_id_predicates    = prm.get("Material id predicates");
+    distribution              = prm.get("Mesh distribution") == "distributed"
+                                  ? Distribution::distributed
+                                  : Distribution::shared;
     prm.leave_subsection();
     require(scale > 0, "Geometry/Scale", "must be > 0");
   }
@@ -257,11 +278,21 @@ namespace tissuefem::geometry
   std::string
   describe_boundary_ids(const Triangulation<dim> &triangulation)
   {
+    // Each process counts the faces of its own cells (a serial mesh: all
+    // of them), whether or not it holds the others.
     std::map<types::boundary_id, unsigned int> faces;
+    for (const auto &id : triangulation.get_boundary_ids())
+      faces[id] = 0;
     for (const auto &cell : triangulation.active_cell_iterators())
-      for (const auto &face : cell->face_iterators())
-        if (face->at_boundary())
-          ++faces[face->boundary_id()];
+      if (cell->is_locally_owned())
+        for (const auto &face : cell->face_iterators())
+          if (face->at_boundary())
+            ++faces[face->boundary_id()];
+    if (const auto *parallel_mesh
+        = dynamic_cast<const parallel::TriangulationBase<dim> *>(
+          &triangulation))
+      for (auto &[id, count] : faces)
+        count = Utilities::MPI::sum(count, parallel_mesh->get_communicator());
     std::ostringstream text;
     text << "boundary faces by id:";
     for (const auto &[id, count] : faces)

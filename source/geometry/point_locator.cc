@@ -12,22 +12,24 @@ namespace tissuefem::geometry
 {
   template <int dim>
   PointLocator<dim>::PointLocator(const Mapping<dim>       &mapping,
-                                  const Triangulation<dim> &mesh)
+                                  const Triangulation<dim> &mesh,
+                                  const bool                owned_only)
       : mapping(mapping)
   {
     std::vector<std::pair<BoundingBox<dim>, CellIterator>> cell_boxes;
     cell_boxes.reserve(mesh.n_active_cells());
     for (const auto &cell : mesh.active_cell_iterators())
-      {
-        // The mappings of the solid are linear (Q1, P1): a cell lies in the
-        // box of its vertices. Enlarged so that a point just outside a
-        // cell, within the tolerance, still finds it as a candidate.
-        BoundingBox<dim> box  = mapping.get_bounding_box(cell);
-        const double     size = box.get_boundary_points().first.distance(
-          box.get_boundary_points().second);
-        box.extend(4 * tolerance * size);
-        cell_boxes.emplace_back(box, cell);
-      }
+      if (!cell->is_artificial() && (!owned_only || cell->is_locally_owned()))
+        {
+          // The mappings of the solid are linear (Q1, P1): a cell lies in the
+          // box of its vertices. Enlarged so that a point just outside a
+          // cell, within the tolerance, still finds it as a candidate.
+          BoundingBox<dim> box  = mapping.get_bounding_box(cell);
+          const double     size = box.get_boundary_points().first.distance(
+            box.get_boundary_points().second);
+          box.extend(4 * tolerance * size);
+          cell_boxes.emplace_back(box, cell);
+        }
     boxes = pack_rtree(cell_boxes);
   }
 
@@ -70,7 +72,6 @@ namespace tissuefem::geometry
   {
     namespace bgi = boost::geometry::index;
     std::optional<Location> best;
-    double                  best_outside = 0;
     for (auto it = boxes.qbegin(bgi::intersects(p)); it != boxes.qend(); ++it)
       {
         const CellIterator &cell = it->second;
@@ -91,15 +92,11 @@ namespace tissuefem::geometry
         if (outside > tolerance)
           continue;
         // Deepest inside wins; points inside two cells (on a shared face,
-        // to round-off) go to the lowest active cell index, whatever the
-        // order of the tree's answers.
-        if (!best || outside < best_outside
-            || (outside == best_outside
-                && cell->active_cell_index() < best->cell->active_cell_index()))
-          {
-            best         = Location{cell, reference};
-            best_outside = outside;
-          }
+        // to round-off) go to the lowest CellId, whatever the order of the
+        // tree's answers.
+        if (!best || outside < best->outside
+            || (outside == best->outside && cell->id() < best->cell->id()))
+          best = Location{cell, reference, outside};
       }
     return best;
   }

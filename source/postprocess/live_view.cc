@@ -4,6 +4,7 @@
 #include <tissuefem/base/interruption.h>
 #include <tissuefem/base/parallel.h>
 #include <tissuefem/base/reset_request.h>
+#include <tissuefem/geometry/distribution.h>
 #include <tissuefem/output/obstacle_view.h>
 #include <tissuefem/output/output_files.h>
 #include <tissuefem/output/wire_format.h>
@@ -149,6 +150,10 @@ namespace tissuefem::postprocess
     require(dim >= 2,
             "Output/Live view/Port",
             "the live view shows a surface; a 1D body has none (set -1)");
+    // Process 0 sends the whole body's surface (output::BoundarySurface).
+    geometry::require_whole_mesh<dim>(c.scene.triangulation,
+                                      "Output/Live view/Port",
+                                      "the live view (set -1)");
     field_names = {"displacement", "J", "von Mises"};
     if (c.scene.obstacle_contact)
       field_names.push_back("contact pressure");

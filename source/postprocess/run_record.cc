@@ -28,7 +28,7 @@ namespace tissuefem::postprocess
     r.add("processes", parallel_tools::n_processes(), "MPI processes");
     r.add("threads", MultithreadInfo::n_threads(), "threads per process");
     r.add("cells",
-          scene.triangulation.n_active_cells(),
+          scene.triangulation.n_global_active_cells(),
           "active cells at the end");
     r.add("unknowns",
           scene.solid->n_dofs(),
@@ -49,6 +49,9 @@ namespace tissuefem::postprocess
     r.add("peak memory",
           totals.peak_bytes / 1e6,
           "MB resident, sum over processes");
+    r.add("peak memory per process",
+          totals.peak_bytes_largest / 1e6,
+          "MB resident, the largest process's");
     for (const auto &[part, bytes] : totals.memory_parts)
       r.add("memory " + part,
             bytes / 1e6,

@@ -397,7 +397,7 @@ namespace tissuefem::problems
     if (adaptation->adapt(
           state.u, state.time, time_parameters.time_step, state_vectors(state)))
       parallel_tools::screen()
-        << "  mesh adapted: " << scene->triangulation.n_active_cells()
+        << "  mesh adapted: " << scene->triangulation.n_global_active_cells()
         << " cells, " << scene->solid->n_dofs() << " unknowns" << std::endl;
   }
 
@@ -520,6 +520,9 @@ namespace tissuefem::problems
     Utilities::System::get_memory_stats(memory);
     totals.peak_bytes = Utilities::MPI::sum(1024. * memory.VmHWM,
                                             parallel_tools::communicator());
+    totals.peak_bytes_largest
+      = Utilities::MPI::max(1024. * memory.VmHWM,
+                            parallel_tools::communicator());
     totals.memory_parts.clear();
     for (const auto &[part, bytes] : scene->solid->memory_parts())
       totals.memory_parts.emplace_back(
@@ -542,8 +545,11 @@ namespace tissuefem::problems
       postprocessor->finish(state, totals, record);
     screen << "peak memory (resident, all processes): "
            << totals.peak_bytes / 1e6 << " MB, "
-           << totals.peak_bytes / scene->solid->n_dofs() << " bytes per unknown"
-           << std::endl;
+           << totals.peak_bytes / scene->solid->n_dofs()
+           << " bytes per unknown, "
+           << totals.peak_bytes / scene->triangulation.n_global_active_cells()
+           << " bytes per cell; the largest process "
+           << totals.peak_bytes_largest / 1e6 << " MB" << std::endl;
     screen << memory_parts_report(totals, scene->triangulation) << std::endl;
     if (const std::string s = integrator->summary(); !s.empty())
       screen << s << std::endl;
@@ -602,8 +608,10 @@ namespace tissuefem::problems
     screen << "tissuefem: " << dim << "D elasticity, " << scene->describe()
            << ", integrator '" << time_parameters.integrator
            << "', linear solver '" << linear_solver->name() << "'\n"
-           << geometry::describe_boundary_ids(scene->triangulation) << '\n'
-           << scene->boundary_conditions->describe_load_factor() << std::endl;
+           << geometry::describe_boundary_ids(scene->triangulation) << '\n';
+    if (const std::string s = scene->describe_distribution(); !s.empty())
+      screen << s << '\n';
+    screen << scene->boundary_conditions->describe_load_factor() << std::endl;
     for (const auto &line : scene->notes)
       screen << line << std::endl;
     // The table is printed at the end of a finished run, before the line
@@ -611,9 +619,10 @@ namespace tissuefem::problems
     TimerOutput timer(screen, TimerOutput::never, TimerOutput::wall_times);
     if (step == 0)
       {
-        summary->line("cells "
-                      + std::to_string(scene->triangulation.n_active_cells())
-                      + " unknowns " + std::to_string(solid.n_dofs()));
+        summary->line(
+          "cells "
+          + std::to_string(scene->triangulation.n_global_active_cells())
+          + " unknowns " + std::to_string(solid.n_dofs()));
         postprocess(0, time::StepReport(), state);
         wait_for_postprocessors(timer, state);
       }

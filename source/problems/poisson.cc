@@ -124,6 +124,11 @@ namespace tissuefem::problems
   Poisson<dim>::Poisson(ParameterHandler &prm, const RunContext &context)
   {
     geometry_parameters.parse_parameters(prm);
+    require(geometry_parameters.distribution == geometry::Distribution::shared
+              || parallel_tools::n_processes() == 1,
+            "Geometry/Mesh distribution",
+            "'distributed' is for the elasticity problem; the Poisson problem "
+            "holds the whole mesh on every process (use 'shared')");
     geometry_parameters.resolve_relative_to(context.parameter_directory);
     fe_parameters.parse_parameters(prm);
     output_parameters.parse_parameters(prm);

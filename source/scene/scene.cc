@@ -2,6 +2,7 @@
 #include <tissuefem/base/parallel.h>
 #include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/forces/registry.h>
+#include <tissuefem/geometry/distribution.h>
 #include <tissuefem/geometry/mesh_parts.h>
 #include <tissuefem/scene/scene.h>
 #include <tissuefem/time/interface.h>
@@ -61,27 +62,50 @@ namespace tissuefem
             + forces::integrators_with(&Capabilities::rayleigh_damping)
             + " (not '" + integrator.parameters.integrator + "')");
     }
+
+
+    /// How 'Geometry/Mesh distribution' spreads the mesh; one process
+    /// always holds all of it.
+    geometry::Distribution
+    distribution_of(ParameterHandler &prm)
+    {
+      geometry::GeometryParameters parameters;
+      parameters.parse_parameters(prm);
+      return parallel_tools::n_processes() > 1 ? parameters.distribution
+                                               : geometry::Distribution::shared;
+    }
   } // namespace
 
 
   template <int dim>
   Scene<dim>::Scene(ParameterHandler  &prm,
                     const std::string &parameter_directory)
-      : triangulation(parallel_tools::communicator(),
-                      Triangulation<dim>::limit_level_difference_at_vertices,
-                      /*allow_artificial_cells=*/false,
-                      parallel::shared::Triangulation<dim>::partition_metis)
+      : mesh(geometry::make_parallel_mesh<dim>(distribution_of(prm)))
+      , triangulation(*mesh)
   {
-    geometry::GeometryParameters geometry_parameters;
-    geometry_parameters.parse_parameters(prm);
-    geometry_parameters.resolve_relative_to(parameter_directory);
-    geometry::build_triangulation(geometry_parameters, triangulation);
+    // The whole mesh: the one the run computes on, or, when that will hold
+    // each process's cells only, a serial mesh every process builds alike,
+    // checked and then cut (kept to the end for the check of a
+    // quasistatic run's parts, freed at once otherwise).
+    const bool cut = !geometry::holds_whole_mesh<dim>(triangulation);
+    std::unique_ptr<Triangulation<dim>> serial_mesh;
+    if (cut)
+      serial_mesh = std::make_unique<Triangulation<dim>>(
+        Triangulation<dim>::limit_level_difference_at_vertices);
+    const Triangulation<dim> &whole = cut ? *serial_mesh : triangulation;
+    {
+      geometry::GeometryParameters geometry_parameters;
+      geometry_parameters.parse_parameters(prm);
+      geometry_parameters.resolve_relative_to(parameter_directory);
+      geometry::build_triangulation(geometry_parameters,
+                                    cut ? *serial_mesh : triangulation);
+    }
 
     materials::MaterialParameters material_parameters;
     material_parameters.parse_parameters(prm);
     materials
       = std::make_unique<materials::MaterialSet<dim>>(material_parameters, prm);
-    materials->check_covers(triangulation);
+    materials->check_covers(whole);
 
     const ChosenIntegrator       integrator(prm);
     boundary::BoundaryParameters boundary_parameters;
@@ -99,8 +123,11 @@ namespace tissuefem
     }
     boundary_conditions = std::make_unique<boundary::BoundaryConditions<dim>>(
       boundary_parameters);
-    boundary_conditions->check_boundary_ids(triangulation);
-    // Every registered kind of tool the file asks for.
+    boundary_conditions->check_boundary_ids(whole);
+    if (cut)
+      geometry::distribute(*serial_mesh, triangulation);
+    // Every registered kind of tool the file asks for (each refuses a
+    // distributed mesh if it needs the whole one).
     for (const auto &[name, entry] : tool::ToolRegistry<dim>::instance().all())
       if (auto t = entry.create(prm, triangulation))
         tools.emplace(name, std::move(t));
@@ -117,14 +144,18 @@ namespace tissuefem
                 "Manufactured solution/Enabled",
                 "cannot be combined with a tool");
         manufactured = std::make_unique<boundary::ManufacturedSolution<dim>>(
-          manufactured_parameters,
-          *materials,
-          triangulation,
-          integrator.can.in_time);
+          manufactured_parameters, *materials, whole, integrator.can.in_time);
         manufactured->impose_on(*boundary_conditions);
       }
 
     check_rayleigh_damping(integrator);
+    if (!integrator.can.whole_mesh_parameter.empty())
+      geometry::require_whole_mesh<dim>(triangulation,
+                                        integrator.can.whole_mesh_parameter,
+                                        "this setting colours the unknowns "
+                                        "of the whole mesh");
+    if (integrator.can.in_time)
+      serial_mesh.reset();
 
     solid::FiniteElementParameters fe_parameters;
     fe_parameters.parse_parameters(prm);
@@ -159,7 +190,7 @@ namespace tissuefem
     // A tool may hold a part only once it acts, and an obstacle only once
     // the part touches it; the check needs the constraints known up front.
     if (!integrator.can.in_time && tools.empty() && !held)
-      check_every_part_held();
+      check_every_part_held(serial_mesh ? *serial_mesh : triangulation);
     for (auto &[name, t] : tools)
       t->attach(obstacle_contact.get());
     check_initial_data();
@@ -187,13 +218,13 @@ namespace tissuefem
 
   template <int dim>
   void
-  Scene<dim>::check_every_part_held() const
+  Scene<dim>::check_every_part_held(const Triangulation<dim> &whole) const
   {
-    const geometry::MeshParts<dim> parts(triangulation);
+    const geometry::MeshParts<dim> parts(whole);
     // Per part, the displacement components some Dirichlet face fixes.
     std::vector<std::vector<bool>> fixed(parts.n_parts(),
                                          std::vector<bool>(dim, false));
-    for (const auto &cell : triangulation.active_cell_iterators())
+    for (const auto &cell : whole.active_cell_iterators())
       for (const auto &face : cell->face_iterators())
         if (face->at_boundary())
           for (const auto &d : boundary_conditions->dirichlet)
@@ -251,11 +282,29 @@ namespace tissuefem
   Scene<dim>::describe() const
   {
     std::ostringstream s;
-    s << triangulation.n_active_cells() << " cells, " << solid->n_dofs()
+    s << triangulation.n_global_active_cells() << " cells, " << solid->n_dofs()
       << " unknowns, element " << discretization->fe->get_name()
       << ", formulation '" << materials->formulation() << "'";
     return s.str();
   }
+
+  template <int dim>
+  std::string
+  Scene<dim>::describe_distribution() const
+  {
+    if (geometry::holds_whole_mesh<dim>(triangulation))
+      return {};
+    const unsigned int most
+      = Utilities::MPI::max(triangulation.n_active_cells(),
+                            triangulation.get_communicator());
+    std::ostringstream s;
+    s << "mesh distributed: each of " << parallel_tools::n_processes()
+      << " processes holds at most " << most << " of "
+      << triangulation.n_global_active_cells()
+      << " cells (its own and the layer around them)";
+    return s.str();
+  }
+
 
   template class Scene<1>;
   template class Scene<2>;

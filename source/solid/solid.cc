@@ -2,10 +2,10 @@
 #include <deal.II/base/work_stream.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_values.h>
-#include <deal.II/grid/grid_tools.h>
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 #include <deal.II/numerics/vector_tools.h>
 
+#include <tissuefem/geometry/distribution.h>
 #include <tissuefem/materials/kinematics.h>
 #include <tissuefem/materials/tangent_projection.h>
 #include <tissuefem/solid/matrix_rows.h>
@@ -70,7 +70,7 @@ namespace tissuefem::solid
     find_dirichlet_points();
     // Asked for every explicit step; the mesh's extent changes only here.
     diameter
-      = GridTools::diameter(discretization.dof_handler.get_triangulation());
+      = geometry::diameter(discretization.dof_handler.get_triangulation());
     fibre_field.build(discretization, materials, element->fibre_per_cell());
     element->setup(context());
     discretization.initialize_vector(ghosted_u, true);

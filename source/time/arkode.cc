@@ -225,6 +225,15 @@ namespace tissuefem::time
       return report;
     }
 
+    Capabilities
+    capabilities() const override
+    {
+      Capabilities c;
+      if (jacobian_kind == "numerical")
+        c.whole_mesh_parameter = "Time integration/ARKode/Jacobian";
+      return c;
+    }
+
     void
     mesh_changed() override
     {

@@ -55,6 +55,16 @@ namespace tissuefem::time
   }
 
 
+  Interface::Capabilities
+  RadauIIA::capabilities() const
+  {
+    Capabilities c;
+    if (jacobian_kind == "numerical")
+      c.whole_mesh_parameter = "Time integration/Radau IIA/Jacobian";
+    return c;
+  }
+
+
   void
   RadauIIA::initialize(Context &c, State &state)
   {

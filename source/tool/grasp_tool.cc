@@ -4,6 +4,7 @@
 #include <tissuefem/base/parallel.h>
 #include <tissuefem/base/parameter_tools.h>
 #include <tissuefem/base/timing.h>
+#include <tissuefem/geometry/distribution.h>
 #include <tissuefem/tool/grasp_tool.h>
 
 #include <cmath>
@@ -277,6 +278,10 @@ namespace tissuefem::tool
     parameters.parse_parameters(prm);
     if (!parameters.enabled)
       return nullptr;
+    geometry::require_whole_mesh(mesh,
+                                 "Tool/Grasp point",
+                                 "a grasping tool holds vertices it finds "
+                                 "in the whole mesh");
     return std::make_unique<GraspTool<dim>>(parameters, mesh);
   }
 

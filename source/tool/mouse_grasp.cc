@@ -3,6 +3,7 @@
 
 #include <tissuefem/base/input_error.h>
 #include <tissuefem/base/parallel.h>
+#include <tissuefem/geometry/distribution.h>
 #include <tissuefem/tool/grasp_tool.h>
 #include <tissuefem/tool/mouse_grasp.h>
 
@@ -63,6 +64,10 @@ namespace tissuefem::tool
   {
     if (!unavailable(prm).empty())
       return nullptr;
+    // Dragging picks the vertex nearest the mouse in the whole mesh.
+    geometry::require_whole_mesh(mesh,
+                                 "Output/Live view/Port",
+                                 "the live view (set -1)");
     prm.enter_subsection("Mouse");
     const double radius = prm.get_double("Grasp radius");
     prm.leave_subsection();

@@ -3,16 +3,25 @@
 # 3: solver failure), one line on stderr naming the culprit (EXPECTED, and
 # not UNEXPECTED where given), and no files written; or, with ALLOW_FILES (a
 # run that starts and then fails in the solver), no "nan" in any file
-# written.
+# written. With PROCESSES, it runs on that many MPI processes.
 file(REMOVE_RECURSE ${WORKDIR})
 file(MAKE_DIRECTORY ${WORKDIR})
-execute_process(COMMAND ${TISSUEFEM} ${INPUT}
+set(launcher "")
+if(PROCESSES)
+  set(launcher mpirun -np ${PROCESSES})
+endif()
+execute_process(COMMAND ${launcher} ${TISSUEFEM} ${INPUT}
   WORKING_DIRECTORY ${WORKDIR}
   RESULT_VARIABLE status
   OUTPUT_VARIABLE out
   ERROR_VARIABLE err)
 if(NOT status EQUAL EXPECTED_STATUS)
   message(FATAL_ERROR "exit status ${status}, expected ${EXPECTED_STATUS}: ${err}")
+endif()
+if(PROCESSES)
+  # mpirun reports the failed process after tissuefem's line, beginning
+  # with a line of dashes.
+  string(REGEX REPLACE "-----.*" "" err "${err}")
 endif()
 string(STRIP "${err}" err)
 string(FIND "${err}" "\n" newline)

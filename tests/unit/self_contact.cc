@@ -46,6 +46,9 @@ using namespace tissuefem;
 
 namespace
 {
+  /// 'Geometry/Mesh distribution' of every scene below.
+  std::string mesh_distribution = "shared";
+
   constexpr double pressure = 7.;
 
   /// The virtual motion dx = A x, a general linear map with trace dim:
@@ -79,13 +82,14 @@ namespace
     declare_all_parameters(prm);
     const std::string upper = dim == 2 ? "1, 1" : "1, 1, 0.1";
     const std::string n = std::to_string(n_x) + (dim == 2 ? ", 3" : ", 3, 2");
-    prm.parse_input_from_string("set Dimension = " + std::to_string(dim)
-                                + "\nsubsection Geometry\n set Cell type = "
-                                + cells + "\n set Upper corner = " + upper
-                                + "\n set Subdivisions = " + n
-                                + "\nend\nsubsection Boundary conditions\n"
-                                  " set Initial displacement = "
-                                + displacement + "\nend\n");
+    prm.parse_input_from_string(
+      "set Dimension = " + std::to_string(dim)
+      + "\nsubsection Geometry\n set Cell type = " + cells
+      + "\n set Upper corner = " + upper + "\n set Subdivisions = " + n
+      + "\n set Mesh distribution = " + mesh_distribution
+      + "\nend\nsubsection Boundary conditions\n"
+        " set Initial displacement = "
+      + displacement + "\nend\n");
     tissuefem_tests::SolidScene<dim> scene(prm);
     const auto                      &discretization = *scene.discretization;
     VectorType                       u, v, ghosted, force, x;
@@ -185,6 +189,7 @@ namespace
       "set Dimension = " + std::to_string(dim) + "\nsubsection Geometry\n"
       + " set Cell type = " + cells + "\n set Upper corner = " + upper
       + "\n set Subdivisions = " + n
+      + "\n set Mesh distribution = " + mesh_distribution
       + "\nend\nsubsection Materials\n set Young's modulus = 1e-3\nend\n"
         "subsection Boundary conditions\n set Initial displacement = "
       + displacement + "\n set Self contact pressure = "
@@ -239,15 +244,23 @@ main(int argc, char **argv)
   // Every figure is global (dot products of distributed vectors): one
   // process writes.
   const tissuefem_tests::OneWriter one_writer;
-  check_cells<2>("hypercube");
-  check_cells<2>("simplex");
-  check_cells<3>("hypercube");
-  check_cells<3>("simplex");
-  const std::string spiral2 = "(1 - 0.1*y + 0.1*x)*cos(3*pi*x) - x; "
-                              "(1 - 0.1*y + 0.1*x)*sin(3*pi*x) - y";
-  check_derivatives<2>("hypercube", spiral2);
-  check_derivatives<2>("simplex", spiral2);
-  check_derivatives<3>("hypercube", spiral2 + "; 0.075*x");
-  check_derivatives<3>("simplex", spiral2 + "; 0.075*x");
+  // Every check again with each process holding only its own cells and
+  // the layer around them: the boundary facets the force needs are
+  // gathered from all processes either way.
+  for (const std::string distribution : {"shared", "distributed"})
+    {
+      mesh_distribution = distribution;
+      std::cout << "Geometry/Mesh distribution = " << distribution << std::endl;
+      check_cells<2>("hypercube");
+      check_cells<2>("simplex");
+      check_cells<3>("hypercube");
+      check_cells<3>("simplex");
+      const std::string spiral2 = "(1 - 0.1*y + 0.1*x)*cos(3*pi*x) - x; "
+                                  "(1 - 0.1*y + 0.1*x)*sin(3*pi*x) - y";
+      check_derivatives<2>("hypercube", spiral2);
+      check_derivatives<2>("simplex", spiral2);
+      check_derivatives<3>("hypercube", spiral2 + "; 0.075*x");
+      check_derivatives<3>("simplex", spiral2 + "; 0.075*x");
+    }
   return tissuefem_tests::exit_status();
 }

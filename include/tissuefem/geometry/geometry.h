@@ -3,6 +3,8 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/grid/tria.h>
 
+#include <tissuefem/geometry/distribution.h>
+
 #include <string>
 
 namespace tissuefem::geometry
@@ -38,6 +40,8 @@ namespace tissuefem::geometry
     unsigned int global_refinements;
     std::string  boundary_id_predicates;
     std::string  material_id_predicates;
+    /// 'Mesh distribution': how the mesh is spread over processes
+    Distribution distribution = Distribution::shared;
   };
 
   /**
@@ -60,7 +64,8 @@ namespace tissuefem::geometry
   constexpr types::boundary_id unmatched_boundary_id = 254;
 
   /// "boundary faces by id: 0 (12) 1 (12) ...": how many boundary faces
-  /// carry each id.
+  /// carry each id (in the whole mesh, whichever processes hold it;
+  /// collective on a parallel mesh).
   template <int dim>
   std::string
   describe_boundary_ids(const Triangulation<dim> &triangulation);

@@ -32,9 +32,10 @@ namespace tissuefem::geometry
    * enlarged) contains the point, found in an R-tree; each is checked in
    * its own reference cell (reference_cell_distance()); the candidate the
    * point is deepest inside wins, a tie (a point on a shared face) going
-   * to the lowest active cell index, so that every process and every
-   * partition picks the same cell. Built for the current mesh: rebuild it
-   * when the mesh changes.
+   * to the lowest CellId, which names a cell alike on every process and
+   * for every partition (active cell indices are a process's own on a
+   * distributed mesh). Built for the current mesh: rebuild it when the
+   * mesh changes.
    */
   template <int dim>
   class PointLocator
@@ -47,6 +48,9 @@ namespace tissuefem::geometry
       CellIterator cell;
       /// Coordinates of the point in the reference cell of @p cell.
       Point<dim> reference;
+      /// How far it lies outside that cell (reference_cell_distance(), at
+      /// least 0, at most tolerance).
+      double outside;
     };
 
     /// How far outside its reference cell a point may be and still count
@@ -54,7 +58,11 @@ namespace tissuefem::geometry
     /// inverse mapping, and points on the mesh's boundary.
     static constexpr double tolerance = 1e-10;
 
-    PointLocator(const Mapping<dim> &mapping, const Triangulation<dim> &mesh);
+    /// Searches the active cells of @p mesh this process holds, or, if
+    /// @p owned_only, those it owns.
+    PointLocator(const Mapping<dim>       &mapping,
+                 const Triangulation<dim> &mesh,
+                 bool                      owned_only = false);
 
     /// The cell containing @p p, or nothing if no cell does (within
     /// tolerance).

@@ -17,7 +17,9 @@ namespace tissuefem::output
    * Point evaluation of a vector field at fixed reference points. The cell
    * containing each point and the point's reference coordinates are found
    * once (geometry::PointLocator: checked in the reference cell, also on
-   * simplices); evaluation is then a sum over the cell's shape functions.
+   * simplices), among the cells of all processes, whichever hold the whole
+   * mesh or a part; the process owning that cell evaluates it as a sum over
+   * the cell's shape functions.
    */
   template <int dim>
   class Probes
@@ -41,9 +43,11 @@ namespace tissuefem::output
     evaluate(const VectorType &u) const;
 
   private:
-    std::vector<Point<dim>>                                     locations;
-    const DoFHandler<dim>                                      &dof_handler;
+    std::vector<Point<dim>> locations;
+    const DoFHandler<dim>  &dof_handler;
+    /// The cell of each point, if this process owns it (else invalid).
     std::vector<typename DoFHandler<dim>::active_cell_iterator> cells;
+    std::vector<bool>                                           evaluates;
     std::vector<Point<dim>> reference_points;
   };
 } // namespace tissuefem::output

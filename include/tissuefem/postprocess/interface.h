@@ -60,6 +60,9 @@ namespace tissuefem::postprocess
     unsigned int        newton_iterations = 0, rejected_attempts = 0;
     /// Resident memory, summed over processes (bytes).
     double peak_bytes = 0;
+    /// The largest process's resident memory (bytes): what one machine's
+    /// share of a run needs, which 'Geometry/Mesh distribution' lowers.
+    double peak_bytes_largest = 0;
     /// What the solid holds at the end, by part (Solid::memory_parts()),
     /// summed over processes (bytes).
     std::vector<std::pair<std::string, double>> memory_parts;

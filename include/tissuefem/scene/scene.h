@@ -1,7 +1,7 @@
 #pragma once
 
 #include <deal.II/base/parameter_handler.h>
-#include <deal.II/distributed/shared_tria.h>
+#include <deal.II/distributed/tria_base.h>
 
 #include <tissuefem/boundary/boundary_conditions.h>
 #include <tissuefem/boundary/manufactured_solution.h>
@@ -32,9 +32,12 @@ namespace tissuefem
    *
    * The run loop (problems::Elasticity), the benchmarks, the studies'
    * children (which run the elasticity problem) and the unit tests all build
-   * their scenes here, so a scene means the same thing everywhere. The mesh
-   * is shared by all MPI processes (parallel::shared::Triangulation,
-   * partitioned by METIS); each process assembles its own cells.
+   * their scenes here, so a scene means the same thing everywhere. METIS
+   * gives each MPI process its cells to assemble; every process holds the
+   * whole mesh or only its cells and their neighbours, as 'Geometry/Mesh
+   * distribution' says (geometry/distribution.h). The checks that need the
+   * whole mesh (materials and boundary ids cover it, every part is held)
+   * run on it either way, before it is cut.
    *
    * Members are public and built in the order listed; each refers to those
    * before it, so none may be replaced while a later one lives.
@@ -42,6 +45,10 @@ namespace tissuefem
   template <int dim>
   class Scene
   {
+    /// Owns the mesh `triangulation` refers to (declared first: built
+    /// first).
+    std::unique_ptr<parallel::TriangulationBase<dim>> mesh;
+
   public:
     /// Declares the subsections only a scene reads (the tools', Manufactured
     /// solution, the force contributions'); the others are shared with other
@@ -62,11 +69,21 @@ namespace tissuefem
     time::State
     initial_state() const;
 
-    /// One line for the screen: cells, unknowns, element.
+    /// One line for the screen: cells (of all processes), unknowns,
+    /// element.
     std::string
     describe() const;
 
-    parallel::shared::Triangulation<dim>                 triangulation;
+    /// For a distributed mesh, one line for the screen: "mesh distributed:
+    /// each of N processes holds at most C of the M cells (its own and the
+    /// layer around them)"; empty when every process holds the whole mesh.
+    /// Collective.
+    std::string
+    describe_distribution() const;
+
+    /// The mesh the run computes on: a parallel::shared or a
+    /// parallel::fullydistributed triangulation.
+    parallel::TriangulationBase<dim>                    &triangulation;
     std::unique_ptr<materials::MaterialSet<dim>>         materials;
     std::unique_ptr<boundary::BoundaryConditions<dim>>   boundary_conditions;
     std::unique_ptr<boundary::ManufacturedSolution<dim>> manufactured;
@@ -92,11 +109,12 @@ namespace tissuefem
 
     /**
      * A quasistatic solve (no inertia) has a unique answer only if every
-     * face-connected part of the body is held: throws InputError (one
-     * line, before any output) naming the parts that no Dirichlet boundary
-     * holds, or holds in some directions only, with a point of each.
+     * face-connected part of the body (@p whole, the whole mesh) is held:
+     * throws InputError (one line, before any output) naming the parts that no
+     * Dirichlet boundary holds, or holds in some directions only, with a point
+     * of each.
      */
     void
-    check_every_part_held() const;
+    check_every_part_held(const Triangulation<dim> &whole) const;
   };
 } // namespace tissuefem

@@ -186,6 +186,10 @@ namespace tissuefem::time
       /// Whether it applies 'Rayleigh mass damping' and 'Rayleigh
       /// stiffness damping'.
       bool rayleigh_damping = false;
+      /// The parameter whose setting needs every process to hold the
+      /// whole mesh (a numerically differenced Jacobian colours the
+      /// unknowns of the whole mesh: Solid::column_groups()), or empty.
+      std::string whole_mesh_parameter;
       /// What the settings given take away of penalty contact, which the
       /// integrator's defaults take, for messages; empty if nothing.
       std::string taken_away;

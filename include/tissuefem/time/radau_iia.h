@@ -60,6 +60,9 @@ namespace tissuefem::time
     void
     mesh_changed() override;
 
+    Capabilities
+    capabilities() const override;
+
     std::string
     summary() const override;
 
