@@ -148,8 +148,9 @@ namespace tissuefem::geometry
         "and checked on every process first and freed before the unknowns "
         "are numbered. What needs every process to hold the whole mesh is "
         "refused with 'distributed', naming its parameter: adaptive "
-        "refinement, tools, the live view, a numerically differenced "
-        "Jacobian. One process: the same as 'shared'.");
+        "refinement, the grasping tool, the live view, a numerically "
+        "differenced Jacobian; and 1D bodies. A checkpoint restarts with the "
+        "setting it was written with. One process: the same as 'shared'.");
     }
     prm.leave_subsection();
   }

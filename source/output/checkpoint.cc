@@ -115,6 +115,7 @@ namespace tissuefem::output
               << "time " << checkpoint.time << '\n'
               << "processes " << checkpoint.n_processes << '\n'
               << "unknowns " << checkpoint.n_dofs << '\n'
+              << (checkpoint.distributed_mesh ? "mesh distributed\n" : "")
               << "integrator " << checkpoint.integrator << '\n';
           for (const double s : checkpoint.integrator_scalars)
             out << "scalar " << s << '\n';
@@ -190,6 +191,8 @@ namespace tissuefem::output
             checkpoint.n_processes = std::stoul(value);
           else if (key == "unknowns")
             checkpoint.n_dofs = std::stoull(value);
+          else if (key == "mesh" && value == "distributed")
+            checkpoint.distributed_mesh = true;
           else if (key == "integrator")
             {
               std::string rest;

@@ -187,7 +187,7 @@ namespace tissuefem::problems
 
     parallel_tools::screen()
       << "\n"
-      << label << ": " << triangulation.n_active_cells() << " cells, "
+      << label << ": " << triangulation.n_global_active_cells() << " cells, "
       << u.size() << " unknowns, model '" << material_parameters.model_names[0]
       << "'\n"
       << std::setw(32) << "tangent" << std::setw(14) << "us per cell"
@@ -232,8 +232,9 @@ namespace tissuefem::problems
                               std::chrono::steady_clock::now() - start)
                               .count());
           }
-        const double per_cell   = 1e6 * best / triangulation.n_active_cells();
-        double       difference = 0;
+        const double per_cell
+          = 1e6 * best / triangulation.n_global_active_cells();
+        double difference = 0;
         if (&method == &methods.front().second)
           {
             hand_time = per_cell;
@@ -372,7 +373,9 @@ namespace tissuefem::problems
     const VectorType                  &u) const
   {
     const double n_cells
-      = discretization.dof_handler.get_triangulation().n_active_cells();
+      = dynamic_cast<const parallel::TriangulationBase<dim> &>(
+          discretization.dof_handler.get_triangulation())
+          .n_global_active_cells();
     materials::MaterialSet<dim> materials(material_parameters, prm);
     solid::Solid<dim>           solid(
       discretization,

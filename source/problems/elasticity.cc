@@ -175,10 +175,12 @@ namespace tissuefem::problems
   Elasticity<dim>::write_checkpoint(const unsigned int step, time::State &state)
   {
     output::Checkpoint checkpoint;
-    checkpoint.step               = step;
-    checkpoint.time               = state.time;
-    checkpoint.n_processes        = parallel_tools::n_processes();
-    checkpoint.n_dofs             = scene->solid->n_dofs();
+    checkpoint.step        = step;
+    checkpoint.time        = state.time;
+    checkpoint.n_processes = parallel_tools::n_processes();
+    checkpoint.n_dofs      = scene->solid->n_dofs();
+    checkpoint.distributed_mesh
+      = !geometry::holds_whole_mesh<dim>(scene->triangulation);
     checkpoint.integrator         = time_parameters.integrator;
     checkpoint.integrator_scalars = integrator->checkpoint_scalars();
     for (const auto &[name, postprocessor] : postprocessors)
@@ -327,6 +329,19 @@ namespace tissuefem::problems
               + std::to_string(checkpoint.n_dofs)
               + " unknowns; this scene has '" + time_parameters.integrator
               + "' and " + std::to_string(scene->solid->n_dofs()));
+    // Each process's unknowns come in another order on a distributed mesh.
+    const bool distributed
+      = !geometry::holds_whole_mesh<dim>(scene->triangulation);
+    const auto kind
+      = [](const bool d) { return std::string(d ? "distributed" : "shared"); };
+    require(checkpoint.distributed_mesh == distributed,
+            "--restart",
+            "the checkpoint was written on a "
+              + kind(checkpoint.distributed_mesh)
+              + " mesh; this run's 'Geometry/Mesh distribution' gives a "
+              + kind(distributed)
+              + " one, whose processes order their "
+                "unknowns otherwise: restart with the same setting");
     cut_back_files(checkpoint, appended_files());
     summary->resume();
     for (auto &[name, postprocessor] : postprocessors)

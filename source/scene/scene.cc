@@ -66,13 +66,22 @@ namespace tissuefem
 
     /// How 'Geometry/Mesh distribution' spreads the mesh; one process
     /// always holds all of it.
+    template <int dim>
     geometry::Distribution
     distribution_of(ParameterHandler &prm)
     {
       geometry::GeometryParameters parameters;
       parameters.parse_parameters(prm);
-      return parallel_tools::n_processes() > 1 ? parameters.distribution
-                                               : geometry::Distribution::shared;
+      if (parallel_tools::n_processes() == 1)
+        return geometry::Distribution::shared;
+      // In 1D a fully distributed mesh takes the ends of each process's
+      // cells for boundary points, with ids of their own.
+      require(dim > 1
+                || parameters.distribution == geometry::Distribution::shared,
+              "Geometry/Mesh distribution",
+              "'distributed' needs a 2D or 3D body (a bar's mesh is small: "
+              "use 'shared')");
+      return parameters.distribution;
     }
   } // namespace
 
@@ -80,13 +89,13 @@ namespace tissuefem
   template <int dim>
   Scene<dim>::Scene(ParameterHandler  &prm,
                     const std::string &parameter_directory)
-      : mesh(geometry::make_parallel_mesh<dim>(distribution_of(prm)))
+      : mesh(geometry::make_parallel_mesh<dim>(distribution_of<dim>(prm)))
       , triangulation(*mesh)
   {
     // The whole mesh: the one the run computes on, or, when that will hold
     // each process's cells only, a serial mesh every process builds alike,
-    // checked and then cut (kept to the end for the check of a
-    // quasistatic run's parts, freed at once otherwise).
+    // checks, cuts and frees before any unknown is numbered (`whole` is not
+    // used after the cut).
     const bool cut = !geometry::holds_whole_mesh<dim>(triangulation);
     std::unique_ptr<Triangulation<dim>> serial_mesh;
     if (cut)
@@ -124,14 +133,6 @@ namespace tissuefem
     boundary_conditions = std::make_unique<boundary::BoundaryConditions<dim>>(
       boundary_parameters);
     boundary_conditions->check_boundary_ids(whole);
-    if (cut)
-      geometry::distribute(*serial_mesh, triangulation);
-    // Every registered kind of tool the file asks for (each refuses a
-    // distributed mesh if it needs the whole one).
-    for (const auto &[name, entry] : tool::ToolRegistry<dim>::instance().all())
-      if (auto t = entry.create(prm, triangulation))
-        tools.emplace(name, std::move(t));
-
     boundary::ManufacturedParameters manufactured_parameters;
     manufactured_parameters.parse_parameters(prm);
     if (manufactured_parameters.enabled)
@@ -140,13 +141,30 @@ namespace tissuefem
                 "Boundary conditions/Load factor",
                 "must be 1 with a manufactured solution (whose body force "
                 "and boundary values are exact as they are)");
-        require(tools.empty(),
-                "Manufactured solution/Enabled",
-                "cannot be combined with a tool");
         manufactured = std::make_unique<boundary::ManufacturedSolution<dim>>(
           manufactured_parameters, *materials, whole, integrator.can.in_time);
         manufactured->impose_on(*boundary_conditions);
       }
+    // Whether every part is held (the manufactured solution's boundary
+    // values included) matters only once the tools and force contributions
+    // are known (below), but is asked of the whole mesh now.
+    const std::string loose
+      = integrator.can.in_time ? std::string() : unheld_parts(whole);
+    // Nothing below needs the whole mesh.
+    if (cut)
+      {
+        geometry::distribute(*serial_mesh, triangulation);
+        serial_mesh.reset();
+      }
+
+    // Every registered kind of tool the file asks for (each refuses a
+    // distributed mesh if it needs the whole one).
+    for (const auto &[name, entry] : tool::ToolRegistry<dim>::instance().all())
+      if (auto t = entry.create(prm, triangulation))
+        tools.emplace(name, std::move(t));
+    require(!manufactured || tools.empty(),
+            "Manufactured solution/Enabled",
+            "cannot be combined with a tool");
 
     check_rayleigh_damping(integrator);
     if (!integrator.can.whole_mesh_parameter.empty())
@@ -154,8 +172,6 @@ namespace tissuefem
                                         integrator.can.whole_mesh_parameter,
                                         "this setting colours the unknowns "
                                         "of the whole mesh");
-    if (integrator.can.in_time)
-      serial_mesh.reset();
 
     solid::FiniteElementParameters fe_parameters;
     fe_parameters.parse_parameters(prm);
@@ -190,7 +206,7 @@ namespace tissuefem
     // A tool may hold a part only once it acts, and an obstacle only once
     // the part touches it; the check needs the constraints known up front.
     if (!integrator.can.in_time && tools.empty() && !held)
-      check_every_part_held(serial_mesh ? *serial_mesh : triangulation);
+      require(loose.empty(), "Boundary conditions/Dirichlet", loose);
     for (auto &[name, t] : tools)
       t->attach(obstacle_contact.get());
     check_initial_data();
@@ -217,8 +233,8 @@ namespace tissuefem
 
 
   template <int dim>
-  void
-  Scene<dim>::check_every_part_held(const Triangulation<dim> &whole) const
+  std::string
+  Scene<dim>::unheld_parts(const Triangulation<dim> &whole) const
   {
     const geometry::MeshParts<dim> parts(whole);
     // Per part, the displacement components some Dirichlet face fixes.
@@ -255,14 +271,14 @@ namespace tissuefem
       }
     if (n_loose > n_named)
       list << "; and " << n_loose - n_named << " more";
-    require(n_loose == 0,
-            "Boundary conditions/Dirichlet",
-            "a quasistatic solve needs every part of the body held, but "
-              + std::to_string(n_loose) + " of its "
-              + std::to_string(parts.n_parts())
-              + " face-connected parts are not: " + list.str()
-              + ". Hold each part in every direction (a Dirichlet boundary "
-                "id on it), or integrate in time");
+    if (n_loose == 0)
+      return {};
+    return "a quasistatic solve needs every part of the body held, but "
+           + std::to_string(n_loose) + " of its "
+           + std::to_string(parts.n_parts())
+           + " face-connected parts are not: " + list.str()
+           + ". Hold each part in every direction (a Dirichlet boundary id on "
+             "it), or integrate in time";
   }
 
 
@@ -294,9 +310,13 @@ namespace tissuefem
   {
     if (geometry::holds_whole_mesh<dim>(triangulation))
       return {};
+    // Own and ghost cells; not the artificial ones a refined mesh keeps as
+    // the parents' other children, which hold nothing.
+    unsigned int held = 0;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      held += cell->is_artificial() ? 0 : 1;
     const unsigned int most
-      = Utilities::MPI::max(triangulation.n_active_cells(),
-                            triangulation.get_communicator());
+      = Utilities::MPI::max(held, triangulation.get_communicator());
     std::ostringstream s;
     s << "mesh distributed: each of " << parallel_tools::n_processes()
       << " processes holds at most " << most << " of "

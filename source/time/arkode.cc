@@ -229,7 +229,8 @@ namespace tissuefem::time
     capabilities() const override
     {
       Capabilities c;
-      if (jacobian_kind == "numerical")
+      // The explicit method never asks for the stiffness.
+      if (jacobian_kind == "numerical" && method != "explicit")
         c.whole_mesh_parameter = "Time integration/ARKode/Jacobian";
       return c;
     }

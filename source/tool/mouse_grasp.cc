@@ -67,7 +67,8 @@ namespace tissuefem::tool
     // Dragging picks the vertex nearest the mouse in the whole mesh.
     geometry::require_whole_mesh(mesh,
                                  "Output/Live view/Port",
-                                 "the live view (set -1)");
+                                 "dragging with the live view's mouse picks "
+                                 "vertices of the whole mesh");
     prm.enter_subsection("Mouse");
     const double radius = prm.get_double("Grasp radius");
     prm.leave_subsection();

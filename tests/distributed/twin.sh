@@ -39,6 +39,10 @@ line=$(grep "^mesh distributed:" distributed/screen.txt) || {
 echo "$line"
 held=$(sed -E 's/.*holds at most ([0-9]+) of ([0-9]+) cells.*/\1 \2/' <<<"$line")
 read -r most all <<<"$held"
+if ! [[ "$most" =~ ^[0-9]+$ && "$all" =~ ^[0-9]+$ ]]; then
+  echo "FAIL: cannot read the cells held from: $line"
+  exit 1
+fi
 if [ "$most" -ge "$all" ]; then
   echo "FAIL: a process holds all $all cells"
   exit 1

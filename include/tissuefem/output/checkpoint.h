@@ -18,10 +18,14 @@ namespace tissuefem::output
    */
   struct Checkpoint
   {
-    unsigned int        step        = 0;
-    double              time        = 0;
-    unsigned int        n_processes = 1;
-    std::uint64_t       n_dofs      = 0;
+    unsigned int  step        = 0;
+    double        time        = 0;
+    unsigned int  n_processes = 1;
+    std::uint64_t n_dofs      = 0;
+    /// Written by processes each holding only its own cells ('Geometry/Mesh
+    /// distribution = distributed'), which number the unknowns of a process
+    /// in another order than a shared mesh does.
+    bool                distributed_mesh = false;
     std::string         integrator;
     std::vector<double> integrator_scalars;
     /// Output file -> its size in bytes at the checkpoint; a restart cuts

@@ -110,11 +110,11 @@ namespace tissuefem
     /**
      * A quasistatic solve (no inertia) has a unique answer only if every
      * face-connected part of the body (@p whole, the whole mesh) is held:
-     * throws InputError (one line, before any output) naming the parts that no
-     * Dirichlet boundary holds, or holds in some directions only, with a point
-     * of each.
+     * what to tell the user (one line) if some are not, naming the parts
+     * that no Dirichlet boundary holds, or holds in some directions only,
+     * with a point of each; empty if all are held.
      */
-    void
-    check_every_part_held(const Triangulation<dim> &whole) const;
+    std::string
+    unheld_parts(const Triangulation<dim> &whole) const;
   };
 } // namespace tissuefem
