@@ -3,6 +3,8 @@
 #include <tissuefem/geometry/point_locator.h>
 
 #include <boost/geometry/index/rtree.hpp>
+#include <boost/serialization/string.hpp>
+#include <boost/serialization/utility.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -15,6 +17,7 @@ namespace tissuefem::geometry
                                   const Triangulation<dim> &mesh,
                                   const bool                owned_only)
       : mapping(mapping)
+      , owned_only(owned_only)
   {
     std::vector<std::pair<BoundingBox<dim>, CellIterator>> cell_boxes;
     cell_boxes.reserve(mesh.n_active_cells());
@@ -91,15 +94,53 @@ namespace tissuefem::geometry
                      0.);
         if (outside > tolerance)
           continue;
-        // Deepest inside wins; points inside two cells (on a shared face,
-        // to round-off) go to the lowest CellId, whatever the order of the
-        // tree's answers.
-        if (!best || outside < best->outside
-            || (outside == best->outside && cell->id() < best->cell->id()))
+        if (!best
+            || precedes(outside, cell->id(), best->outside, best->cell->id()))
           best = Location{cell, reference, outside};
       }
     return best;
   }
+
+  template <int dim>
+  bool
+  PointLocator<dim>::precedes(const double  outside,
+                              const CellId &id,
+                              const double  best_outside,
+                              const CellId &best_id)
+  {
+    // Deepest inside wins; points inside two cells (on a shared face, to
+    // round-off) go to the lowest CellId, whatever the order of the
+    // tree's answers or of the processes.
+    return outside < best_outside || (outside == best_outside && id < best_id);
+  }
+
+
+  template <int dim>
+  typename PointLocator<dim>::Found
+  PointLocator<dim>::locate_among_processes(const Point<dim> &p,
+                                            const MPI_Comm    comm) const
+  {
+    // Candidates of cells a process does not own would be found twice.
+    Assert(owned_only, ExcMessage("build the locator with owned_only"));
+    const auto found = locate(p);
+    // (how far outside, CellId as text) of each process's own candidate.
+    const std::pair<double, std::string> mine(found ? found->outside : 0.,
+                                              found
+                                                ? found->cell->id().to_string()
+                                                : std::string());
+    std::optional<std::pair<double, CellId>> best;
+    for (const auto &[outside, id] : Utilities::MPI::all_gather(comm, mine))
+      if (!id.empty()
+          && (!best
+              || precedes(outside, CellId(id), best->first, best->second)))
+        best = std::pair(outside, CellId(id));
+    Found result;
+    result.anywhere = best.has_value();
+    if (found && best && found->cell->id() == best->second)
+      result.here = found;
+    return result;
+  }
+
 
   template class PointLocator<1>;
   template class PointLocator<2>;

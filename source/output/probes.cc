@@ -2,10 +2,6 @@
 #include <tissuefem/geometry/point_locator.h>
 #include <tissuefem/output/probes.h>
 
-#include <boost/serialization/string.hpp>
-#include <boost/serialization/utility.hpp>
-
-#include <limits>
 #include <sstream>
 
 namespace tissuefem::output
@@ -18,47 +14,34 @@ namespace tissuefem::output
       : locations(points)
       , dof_handler(dof_handler)
   {
-    // Each process looks among its own cells, then all take the best
-    // candidate of any process by the locator's own rule (deepest inside,
-    // then lowest CellId): the same cell whichever cells a process holds.
+    // The cell of the process that owns it, whichever cells a process
+    // holds.
     const geometry::PointLocator<dim> locator(mapping,
                                               dof_handler.get_triangulation(),
                                               /*owned_only=*/true);
-    const double none = std::numeric_limits<double>::infinity();
     for (const auto &p : points)
       {
-        const auto                           found = locator.locate(p);
-        const std::pair<double, std::string> mine(
-          found ? found->outside : none,
-          found ? found->cell->id().to_string() : std::string());
-        std::pair<double, std::string> best(none, std::string());
-        for (const auto &[outside, id] :
-             Utilities::MPI::all_gather(parallel_tools::communicator(), mine))
-          if (outside < best.first
-              || (outside == best.first && outside < none
-                  && CellId(id) < CellId(best.second)))
-            best = {outside, id};
-        if (best.first == none)
+        const auto found
+          = locator.locate_among_processes(p, parallel_tools::communicator());
+        if (!found.anywhere)
           {
             std::ostringstream where;
             where << "(" << p << ")";
             throw InputError("Parameter '" + parameter + "': point "
                              + where.str() + " lies outside the mesh");
           }
-        if (found && mine.second == best.second)
+        if (found.here)
           {
             cells.emplace_back(&dof_handler.get_triangulation(),
-                               found->cell->level(),
-                               found->cell->index(),
+                               found.here->cell->level(),
+                               found.here->cell->index(),
                                &dof_handler);
-            reference_points.push_back(found->reference);
-            evaluates.push_back(true);
+            reference_points.push_back(found.here->reference);
           }
         else
           {
             cells.emplace_back();
             reference_points.emplace_back();
-            evaluates.push_back(false);
           }
       }
   }
@@ -72,7 +55,7 @@ namespace tissuefem::output
     std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
     std::vector<double> flat(cells.size() * fe.n_components(), 0.);
     for (unsigned int p = 0; p < cells.size(); ++p)
-      if (evaluates[p])
+      if (cells[p].state() == IteratorState::valid)
         {
           cells[p]->get_dof_indices(dofs);
           for (unsigned int i = 0; i < dofs.size(); ++i)

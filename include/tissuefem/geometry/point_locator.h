@@ -1,6 +1,7 @@
 #pragma once
 
 #include <deal.II/base/bounding_box.h>
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/point.h>
 #include <deal.II/fe/mapping.h>
 #include <deal.II/grid/reference_cell.h>
@@ -69,6 +70,24 @@ namespace tissuefem::geometry
     std::optional<Location>
     locate(const Point<dim> &p) const;
 
+    /// What locate_among_processes() found.
+    struct Found
+    {
+      /// Whether a cell of any process contains the point.
+      bool anywhere = false;
+      /// Where, if this process owns that cell.
+      std::optional<Location> here;
+    };
+
+    /**
+     * Collective over @p comm: the cell containing @p p among the cells
+     * the processes own, chosen by locate()'s rule over all of them, so
+     * the same cell whichever cells each process holds. For a locator
+     * built with owned_only.
+     */
+    Found
+    locate_among_processes(const Point<dim> &p, const MPI_Comm comm) const;
+
     /**
      * How far @p reference lies outside the reference cell @p kind, in
      * reference units (0 inside): on simplices the most negative
@@ -80,7 +99,18 @@ namespace tissuefem::geometry
                             const Point<dim>    &reference);
 
   private:
-    const Mapping<dim>                              &mapping;
+    /// The rule of locate(): whether the candidate cell @p id, which the
+    /// point lies @p outside of, beats the best so far, @p best_id at
+    /// @p best_outside.
+    static bool
+    precedes(double        outside,
+             const CellId &id,
+             double        best_outside,
+             const CellId &best_id);
+
+    const Mapping<dim> &mapping;
+    /// Whether only the cells this process owns were taken.
+    const bool                                       owned_only;
     RTree<std::pair<BoundingBox<dim>, CellIterator>> boxes;
   };
 } // namespace tissuefem::geometry

@@ -45,9 +45,9 @@ namespace tissuefem::output
   private:
     std::vector<Point<dim>> locations;
     const DoFHandler<dim>  &dof_handler;
-    /// The cell of each point, if this process owns it (else invalid).
+    /// The cell of each point, if this process owns it (else an invalid
+    /// iterator).
     std::vector<typename DoFHandler<dim>::active_cell_iterator> cells;
-    std::vector<bool>                                           evaluates;
     std::vector<Point<dim>> reference_points;
   };
 } // namespace tissuefem::output
