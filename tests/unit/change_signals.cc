@@ -99,20 +99,16 @@ main(int argc, char **argv)
                          "release: announced before and after");
 
   events.clear();
-  adaptation::MeshRefinementParameters refinement;
-  refinement.parse_parameters(prm);
-  adaptation::MeshAdaptation<2>            adaptation(refinement,
-                                           scene_objects.triangulation,
-                                           solid);
-  const unsigned int                       old_dofs  = solid.n_dofs();
-  unsigned int                             seen_size = 0;
-  double                                   seen_max  = 0;
+  const auto         adaptation = scene_objects.mesh_adaptation(prm);
+  const unsigned int old_dofs   = solid.n_dofs();
+  unsigned int       seen_size  = 0;
+  double             seen_max   = 0;
   const boost::signals2::scoped_connection state_seen
     = solid.signals.changed.connect([&]() {
         seen_size = u.size();
         seen_max  = u.linfty_norm();
       });
-  const bool adapted = adaptation.adapt(u, 0., 0.1, {&u});
+  const bool adapted = adaptation->adapt(u, 0., 0.1, {&u});
   tissuefem_tests::check(adapted && solid.n_dofs() > old_dofs
                            && events.size() == 2 && seen_size == solid.n_dofs()
                            && std::abs(seen_max - 0.1) < 1e-14,

@@ -210,16 +210,12 @@ namespace
       end
     end
     )"));
-    tissuefem_tests::SolidScene<2>       scene(prm);
-    auto                                &solid = *scene.solid;
-    adaptation::MeshRefinementParameters refinement;
-    refinement.parse_parameters(prm);
-    adaptation::MeshAdaptation<2> adaptation(refinement,
-                                             scene.triangulation,
-                                             solid);
-    auto                          integrator = scene.integrator(prm);
-    auto                          context    = scene.context();
-    time::State                   state;
+    tissuefem_tests::SolidScene<2> scene(prm);
+    auto                          &solid      = *scene.solid;
+    const auto                     adaptation = scene.mesh_adaptation(prm);
+    auto                           integrator = scene.integrator(prm);
+    auto                           context    = scene.context();
+    time::State                    state;
     solid.initial_state(state.u, state.v);
     integrator->initialize(context, state);
     const boost::signals2::scoped_connection reset
@@ -235,10 +231,10 @@ namespace
       {
         integrator->advance(state, 1.);
         const auto before = effective_dilatations(solid, state.u, state.time);
-        adaptation.adapt(state.u,
-                         state.time,
-                         0.05,
-                         {&state.u, &state.v, &state.a});
+        adaptation->adapt(state.u,
+                          state.time,
+                          0.05,
+                          {&state.u, &state.v, &state.a});
         change             = state.time;
         const auto   after = effective_dilatations(solid, state.u, change);
         const double mismatch

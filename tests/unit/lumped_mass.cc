@@ -274,19 +274,15 @@ namespace
       set Maximum levels  = 1
     end
   )");
-    tissuefem_tests::SolidScene<2>       scene(prm);
-    auto                                &solid = *scene.solid;
-    adaptation::MeshRefinementParameters refinement;
-    refinement.parse_parameters(prm);
-    adaptation::MeshAdaptation<2> adaptation(refinement,
-                                             scene.triangulation,
-                                             solid);
-    tissuefem_tests::Random       random(20261130);
-    VectorType                    u, u_tilde, d;
+    tissuefem_tests::SolidScene<2> scene(prm);
+    auto                          &solid      = *scene.solid;
+    const auto                     adaptation = scene.mesh_adaptation(prm);
+    tissuefem_tests::Random        random(20261130);
+    VectorType                     u, u_tilde, d;
     solid.initialize_vector(u);
     for (const auto i : u.locally_owned_elements())
       u[i] = 0.03 * random.uniform() * (1 + i % 3);
-    adaptation.adapt(u, 0., 0.05, {&u});
+    adaptation->adapt(u, 0., 0.05, {&u});
     const std::string name = "2D Q1 with hanging nodes, " + mass + " mass";
     tissuefem_tests::check(solid.has_hanging_nodes(),
                            name + ": the mesh has hanging nodes",

@@ -6,6 +6,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <tissuefem/adaptation/mesh_adaptation.h>
 #include <tissuefem/scene/scene.h>
 #include <tissuefem/solvers/linear_solver.h>
 #include <tissuefem/solvers/newton.h>
@@ -66,6 +67,16 @@ namespace tissuefem_tests
           integrator->advance(state, end_time);
       }
     };
+
+    /// Adaptation of this scene's mesh and solid as 'Mesh refinement' says.
+    std::unique_ptr<adaptation::MeshAdaptation<dim>>
+    mesh_adaptation(ParameterHandler &prm)
+    {
+      adaptation::MeshRefinementParameters refinement;
+      refinement.parse_parameters(prm);
+      return std::make_unique<adaptation::MeshAdaptation<dim>>(
+        refinement, this->triangulation, *this->solid);
+    }
 
     /// Starts a run of 'Time integration/Integrator' from the initial state.
     std::unique_ptr<Run>
