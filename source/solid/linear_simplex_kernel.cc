@@ -20,13 +20,18 @@ namespace tissuefem::solid
     constexpr unsigned int batch_size = 16;
 
     /// Each thread's work space for one batch: deformation gradients,
-    /// fibres, stresses and tangents at its points, sized once.
+    /// fibres, stresses and tangents at its points (or, from models with
+    /// their own simplex stiffness, its node blocks per unit volume), sized
+    /// once.
     template <int dim>
     struct WorkSpace
     {
       std::vector<Tensor<2, dim>> F, P;
       std::vector<Tensor<1, dim>> a;
       std::vector<Tensor<4, dim>> A;
+      std::vector<double>         K;
+      /// The shape gradients of each point's cell.
+      std::vector<const Tensor<1, dim> *> g;
     };
 
     template <int dim>
@@ -192,11 +197,21 @@ namespace tissuefem::solid
         w.P.resize(max_points);
         w.a.resize(max_points);
         w.A.resize(max_points);
+        w.K.resize(max_points * n_packed);
+        w.g.resize(max_points);
       }
     std::array<unsigned int, batch_size> first_point;
     std::array<bool, batch_size>         skipped;
     const materials::Interface<dim>     &material = *batch.material;
     const bool elastic = input.internal && input.u != nullptr;
+    // The model's own node blocks where it has them (the corotational
+    // model's: half the operations of A and its contraction); a projected
+    // tangent or another method needs A.
+    const bool blocks = elastic && input.jacobian
+                        && material.has_simplex_stiffness() && !project
+                        && (method == materials::TangentMethod::hand_coded
+                            || (method == materials::TangentMethod::fastest
+                                && material.has_hand_coded_tangent()));
 
     // Deformation gradients of the batch's cells, one per point.
     unsigned int n_points = 0;
@@ -223,12 +238,17 @@ namespace tissuefem::solid
           {
             w.F[n_points] = Fc;
             w.a[n_points] = point_fibre[p];
+            w.g[n_points] = &gradients[c * n_nodes];
             ++n_points;
           }
       }
     if (elastic && n_points > 0)
       {
-        if (input.jacobian)
+        if (blocks)
+          for (unsigned int p = 0; p < n_points; ++p)
+            material.simplex_stiffness(
+              w.F[p], w.a[p], w.g[p], w.P[p], &w.K[p * n_packed]);
+        else if (input.jacobian)
           {
             material.stresses_and_tangents(
               n_points, w.F.data(), w.a.data(), w.P.data(), w.A.data(), method);
@@ -245,7 +265,8 @@ namespace tissuefem::solid
                    skipped[b - batch.begin],
                    first_point[b - batch.begin],
                    batch.density,
-                   input);
+                   input,
+                   blocks);
   }
 
 
@@ -255,7 +276,8 @@ namespace tissuefem::solid
                                          const bool         skipped,
                                          const unsigned int first_point,
                                          const double       rho,
-                                         const Input       &input)
+                                         const Input       &input,
+                                         const bool         blocks)
   {
     const auto &w       = work_space<dim>();
     const bool  elastic = input.internal && input.u != nullptr;
@@ -284,6 +306,13 @@ namespace tissuefem::solid
               }
             if (!K)
               continue;
+            if (blocks)
+              {
+                const double *Kp = &w.K[p * n_packed];
+                for (unsigned int e = 0; e < n_packed; ++e)
+                  K[e] += weight * Kp[e];
+                continue;
+              }
             for (unsigned int k = 0; k < n_nodes; ++k)
               {
                 // B[a][b][n] = weight A[a][m][b][n] g_k[m]

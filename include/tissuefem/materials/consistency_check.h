@@ -24,10 +24,13 @@ namespace tissuefem::materials
     double      zero_stress_at_identity;
     double      stress_vs_energy;
     double      tangent_vs_stress;
-    double      method_spread;
-    double      major_asymmetry;
-    double      energy_taylor_slope;
-    double      stress_taylor_slope;
+    /// The largest difference between tangent methods (and, for models
+    /// with their own simplex stiffness, between it and the AD tangent
+    /// contracted with a simplex's gradients).
+    double method_spread;
+    double major_asymmetry;
+    double energy_taylor_slope;
+    double stress_taylor_slope;
     /// max |Psi(QF) - Psi(F)| and |P(QF) - Q P(F)| over random rotations Q;
     /// negative when the model is not meant to be frame indifferent.
     double frame_indifference;

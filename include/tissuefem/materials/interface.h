@@ -121,6 +121,46 @@ namespace tissuefem::materials
         stress_and_tangent(F[i], fibre[i], P[i], A[i], method);
     }
 
+    /**
+     * For a linear simplex (one F per cell, dim + 1 shape gradients @p g):
+     * the stress P and the node blocks of the stiffness per unit volume,
+     * K_kl = sum_mn A_imjn g_k,m g_l,n, for k <= l in the order (0,0),
+     * (0,1), ..., (0,d), (1,1), ..., each dim x dim row-major into @p K (as
+     * solid::LinearSimplexKernel packs a cell matrix). This default
+     * contracts the hand-coded A of stress_and_tangent(); models whose
+     * tangent has a structure cheaper to contract than to write out
+     * override it and has_simplex_stiffness().
+     */
+    virtual void
+    simplex_stiffness(const Tensor<2, dim> &F,
+                      const Tensor<1, dim> &fibre,
+                      const Tensor<1, dim> *g,
+                      Tensor<2, dim>       &P,
+                      double               *K) const
+    {
+      Tensor<4, dim> A;
+      stress_and_tangent(F, fibre, P, A, TangentMethod::hand_coded);
+      for (unsigned int k = 0, b = 0; k <= dim; ++k)
+        for (unsigned int l = k; l <= dim; ++l, ++b)
+          for (unsigned int i = 0; i < dim; ++i)
+            for (unsigned int j = 0; j < dim; ++j)
+              {
+                double sum = 0;
+                for (unsigned int m = 0; m < dim; ++m)
+                  for (unsigned int n = 0; n < dim; ++n)
+                    sum += A[i][m][j][n] * g[k][m] * g[l][n];
+                K[(b * dim + i) * dim + j] = sum;
+              }
+    }
+
+    /// Whether simplex_stiffness() is the model's own, cheaper than
+    /// stress_and_tangent() and the contraction.
+    virtual bool
+    has_simplex_stiffness() const
+    {
+      return false;
+    }
+
     /// Whether the energy depends on the fibre direction.
     virtual bool
     uses_fibres() const

@@ -214,14 +214,15 @@ namespace tissuefem::solid
       const std::function<double(const Batch &)> &batch_sum) const;
 
     /// Element vector (and matrix) of cached cell @p c from the stresses
-    /// (and tangents) of the batch's work space starting at @p first_point;
-    /// zeros if @p skipped.
+    /// (and tangents, or with @p blocks the model's node blocks) of the
+    /// batch's work space starting at @p first_point; zeros if @p skipped.
     void
     cell_objects(const unsigned int c,
                  const bool         skipped,
                  const unsigned int first_point,
                  const double       rho,
-                 const Input       &input);
+                 const Input       &input,
+                 const bool         blocks);
 
     /// Evaluates the cells of one batch.
     void
