@@ -204,11 +204,15 @@ namespace tissuefem::solid
     std::array<bool, batch_size>         skipped;
     const materials::Interface<dim>     &material = *batch.material;
     const bool elastic = input.internal && input.u != nullptr;
+    // Tangents where some cell of the batch wants its matrix.
+    bool tangents = false;
+    for (unsigned int b = batch.begin; b < batch.end && !tangents; ++b)
+      tangents = wants_matrix(input, order[b]);
     // The model's own node blocks where it has them (the corotational
     // model's: half the operations of A and its contraction); a projected
     // tangent or another method needs A.
-    const bool blocks = elastic && input.jacobian
-                        && material.has_simplex_stiffness() && !project
+    const bool blocks = elastic && tangents && material.has_simplex_stiffness()
+                        && !project
                         && (method == materials::TangentMethod::hand_coded
                             || (method == materials::TangentMethod::fastest
                                 && material.has_hand_coded_tangent()));
@@ -248,7 +252,7 @@ namespace tissuefem::solid
           for (unsigned int p = 0; p < n_points; ++p)
             material.simplex_stiffness(
               w.F[p], w.a[p], w.g[p], w.P[p], &w.K[p * n_packed]);
-        else if (input.jacobian)
+        else if (tangents)
           {
             material.stresses_and_tangents(
               n_points, w.F.data(), w.a.data(), w.P.data(), w.A.data(), method);
@@ -282,7 +286,7 @@ namespace tissuefem::solid
     const auto &w       = work_space<dim>();
     const bool  elastic = input.internal && input.u != nullptr;
     double     *r       = &vectors[c * n_dofs];
-    double     *K       = input.jacobian ? &matrices[c * n_packed] : nullptr;
+    double     *K = wants_matrix(input, c) ? &matrices[c * n_packed] : nullptr;
     std::fill(r, r + n_dofs, 0.);
     if (K)
       std::fill(K, K + n_packed, 0.);

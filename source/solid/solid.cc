@@ -393,12 +393,13 @@ namespace tissuefem::solid
 
 
   template <int dim>
-  void
+  bool
   Solid<dim>::implicit_residual_lifting(const VectorType &u,
                                         const VectorType &u_tilde,
                                         const double      mass_coefficient,
                                         const double      time,
-                                        VectorType       &residual)
+                                        VectorType       &residual,
+                                        const bool        with_jacobian)
   {
     Request request = implicit_request(u, u_tilde, mass_coefficient, time);
     // deal.II adds -J_ij e_j to row i for an inhomogeneity e_j of a
@@ -416,7 +417,14 @@ namespace tissuefem::solid
           lifting_constraints.set_inhomogeneity(dof, ghosted_u[dof] - value);
         }
     lifting_constraints.close();
-    request.jacobian      = true;
+    // Only the lean kernel lifts from the moving cells' own matrices; a
+    // formulation's own system, its patches and the force contributions
+    // (contact) add their terms through the Jacobian.
+    request.jacobian = with_jacobian || !uses_lean_kernel(request)
+                       || element->has_system()
+                       || element->lean_kernel()
+                            != formulations::Interface<dim>::LeanKernel::all
+                       || !contributions.empty();
     request.rows          = &lifting_constraints;
     request.inhomogeneous = true;
     assemble(request, residual);
@@ -432,6 +440,7 @@ namespace tissuefem::solid
         residual[line.index]
           = matrix.diag_element(line.index) * line.inhomogeneity;
     residual.compress(VectorOperation::insert);
+    return request.jacobian;
   }
 
 

@@ -62,6 +62,17 @@ namespace tissuefem::solid
     input.external = request.external;
     input.jacobian = request.jacobian;
     input.cells    = request.cells;
+    // A lifting residual without the Jacobian (implicit_residual_lifting()
+    // for a kept factorization): the matrices of the cells whose prescribed
+    // values move, for the vector's share of the lifting below.
+    const bool        lifting = !request.jacobian && request.inhomogeneous;
+    std::vector<bool> lifted;
+    if (lifting)
+      {
+        lifted               = moving_cells(*request.rows);
+        input.jacobian       = true;
+        input.jacobian_cells = &lifted;
+      }
     const auto inverted_cells
       = loads_in_system ? std::vector<std::pair<unsigned int, double>>()
                         : lean->evaluate(input);
@@ -154,6 +165,16 @@ namespace tissuefem::solid
           }
         else
           rows.distribute_local_to_global(rhs, dofs, residual);
+        // J_ij e_j out of row i for each moving prescribed dof j (what the
+        // matrix form above does with the inhomogeneities).
+        if (lifting && lifted[c])
+          {
+            for (unsigned int i = 0; i < n; ++i)
+              for (unsigned int j = 0; j < n; ++j)
+                matrix(index[i], index[j]) = lean->cell_matrix(c, i, j);
+            rows.distribute_local_to_global(
+              rhs, dofs, dofs, residual, matrix, false);
+          }
       }
     add_patch_terms(request, residual, report, loads_in_system);
     add_contributions(request, residual);
@@ -167,9 +188,24 @@ namespace tissuefem::solid
   }
 
 
-#define TISSUEFEM_INSTANTIATE(dim)                                   \
-  template bool Solid<dim>::uses_lean_kernel(const Request &) const; \
-  template void Solid<dim>::assemble_lean(const Request &, VectorType &);
+  template <int dim>
+  std::vector<bool>
+  Solid<dim>::moving_cells(const AffineConstraints<double> &rows) const
+  {
+    std::vector<bool> moving(cache.cells().size(), false);
+    for (unsigned int c = 0; c < moving.size(); ++c)
+      if (!access.direct[c])
+        for (unsigned int i = 0; i < cache.n_dofs && !moving[c]; ++i)
+          moving[c] = rows.is_inhomogeneously_constrained(cache.dofs(c)[i]);
+    return moving;
+  }
+
+
+#define TISSUEFEM_INSTANTIATE(dim)                                        \
+  template bool Solid<dim>::uses_lean_kernel(const Request &) const;      \
+  template void Solid<dim>::assemble_lean(const Request &, VectorType &); \
+  template std::vector<bool> Solid<dim>::moving_cells(                    \
+    const AffineConstraints<double> &) const;
   TISSUEFEM_INSTANTIATE(1)
   TISSUEFEM_INSTANTIATE(2)
   TISSUEFEM_INSTANTIATE(3)

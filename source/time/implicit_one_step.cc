@@ -52,13 +52,19 @@ namespace tissuefem::time
                                            const double time,
                                            VectorType  &u,
                                            StepReport  &report,
-                                           const bool   refactorize)
+                                           const bool   refactorize,
+                                           const bool   jacobian_needed)
   {
     auto      &solid = context->solid;
     VectorType residual, update;
     auto       start = std::chrono::steady_clock::now();
-    solid.implicit_residual_lifting(
-      u, u_tilde, mass_coefficient, time, residual);
+    const bool assembled
+      = solid.implicit_residual_lifting(u,
+                                        u_tilde,
+                                        mass_coefficient,
+                                        time,
+                                        residual,
+                                        jacobian_needed || refactorize);
     if (deferred_shift != 0)
       {
         // r(u_n) = R(u_n) - c' M (u_n - u_tilde') on the free rows (the
@@ -75,7 +81,8 @@ namespace tissuefem::time
     if (damped)
       residual += shift;
     report.assembly_seconds += seconds_since(start);
-    ++report.jacobian_evaluations;
+    if (assembled)
+      ++report.jacobian_evaluations;
     residual *= -1.;
     update.reinit(u);
     const bool from_guess

@@ -95,7 +95,7 @@ namespace
       b = v[0];
       b *= -1.;
       solid.solve_jacobian(solver, v[2], b, true, 0.);
-      solid.implicit_residual_lifting(u, u_tilde, c, t, v[1]);
+      solid.implicit_residual_lifting(u, u_tilde, c, t, v[1], true);
       b = v[1];
       b *= -1.;
       solid.solve_jacobian(solver, v[3], b, true, 0.);

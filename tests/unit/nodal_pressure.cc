@@ -341,7 +341,7 @@ namespace
     // The lifted update meets the right end's 0.1 at t = 1.
     VectorType lifted, b;
     solid.initialize_vector(lifted);
-    solid.implicit_residual_lifting(u, u_tilde, c, 1., lifted);
+    solid.implicit_residual_lifting(u, u_tilde, c, 1., lifted, true);
     b = lifted;
     b *= -1.;
     solid.solve_jacobian(solver, update, b, true, 0.);

@@ -126,6 +126,9 @@ namespace tissuefem::solid
       bool           jacobian = false;
       /// Cells to evaluate (by cache index), all if null.
       const std::vector<bool> *cells = nullptr;
+      /// With jacobian: the cells whose matrices are computed (by cache
+      /// index; all if null); the others' are left as they were.
+      const std::vector<bool> *jacobian_cells = nullptr;
     };
 
     /**
@@ -202,6 +205,14 @@ namespace tissuefem::solid
       const materials::Interface<dim> *material;
       double                           density;
     };
+
+    /// Whether @p input asks for cached cell @p c's matrix.
+    static bool
+    wants_matrix(const Input &input, const unsigned int c)
+    {
+      return input.jacobian
+             && (!input.jacobian_cells || (*input.jacobian_cells)[c]);
+    }
 
     /// F = I + sum_k u_k (x) g_k of cached cell @p c, ghosted @p u.
     Tensor<2, dim>

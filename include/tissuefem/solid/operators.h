@@ -109,13 +109,20 @@ namespace tissuefem::solid
      * du = d there and carries the boundary motion into the body linearly
      * (the first iteration of a Newton method with inhomogeneous
      * constraints), instead of a boundary layer of distorted elements.
+     *
+     * Without @p with_jacobian (a caller that solves with a kept
+     * factorization), J may be left as last assembled where the residual
+     * can do without it: J d then comes from the matrices of the cells
+     * whose prescribed values move, and the prescribed rows take J's kept
+     * diagonal. Returns whether J was assembled.
      */
-    virtual void
+    virtual bool
     implicit_residual_lifting(const VectorType &u,
                               const VectorType &u_tilde,
                               const double      mass_coefficient,
                               const double      time,
-                              VectorType       &residual)
+                              VectorType       &residual,
+                              const bool        with_jacobian)
       = 0;
 
     /**

@@ -112,12 +112,13 @@ namespace tissuefem::solid
                       VectorType       &residual,
                       const bool        with_jacobian) override;
 
-    void
+    bool
     implicit_residual_lifting(const VectorType &u,
                               const VectorType &u_tilde,
                               const double      mass_coefficient,
                               const double      time,
-                              VectorType       &residual) override;
+                              VectorType       &residual,
+                              const bool        with_jacobian) override;
 
     double
     implicit_energy(const VectorType &u,
@@ -395,6 +396,12 @@ namespace tissuefem::solid
     /// covers (see uses_lean_kernel()).
     void
     assemble_lean(const Request &request, VectorType &residual);
+
+    /// By cache index: the cells with a dof that @p rows constrains
+    /// inhomogeneously (a prescribed value that moves), for the lean
+    /// kernel's lifting without the Jacobian.
+    std::vector<bool>
+    moving_cells(const AffineConstraints<double> &rows) const;
 
     /// Whether @p request is for the lean kernel: one is built for this
     /// mesh and the request's loads are its (gravity, inertia; no body

@@ -128,12 +128,16 @@ namespace tissuefem::time
     /// the largest entry of the update (length units); throws SolverError,
     /// leaving @p u unchanged, if the guess cannot be evaluated or the
     /// system solved. An iterative solver starts from update_guess().
+    /// Without @p jacobian_needed (a direct solver's kept factorization
+    /// serves, and nothing after reads the Jacobian) the solid may leave
+    /// it unassembled (Operators::implicit_residual_lifting).
     double
     lift_boundary_increment(const double mass_coefficient,
                             const double time,
                             VectorType  &u,
                             StepReport  &report,
-                            const bool   refactorize = true);
+                            const bool   refactorize     = true,
+                            const bool   jacobian_needed = true);
 
     /// A predictor of lift_boundary_increment()'s update from @p u, for an
     /// iterative solver to start from; false (the default): none, start
