@@ -69,6 +69,29 @@ namespace tissuefem::materials
     double g = 0, dg = 0, d2g = 0;
   };
 
+  /// The node blocks K_kl = sum_mn A_imjn g_k,m g_l,n, k <= l, of a
+  /// tangent @p A and a simplex's dim + 1 gradients @p g, packed as
+  /// Interface::simplex_stiffness() gives them.
+  template <int dim>
+  void
+  contract_simplex_blocks(const Tensor<4, dim> &A,
+                          const Tensor<1, dim> *g,
+                          double               *K)
+  {
+    for (unsigned int k = 0, b = 0; k <= dim; ++k)
+      for (unsigned int l = k; l <= dim; ++l, ++b)
+        for (unsigned int i = 0; i < dim; ++i)
+          for (unsigned int j = 0; j < dim; ++j)
+            {
+              double sum = 0;
+              for (unsigned int m = 0; m < dim; ++m)
+                for (unsigned int n = 0; n < dim; ++n)
+                  sum += A[i][m][j][n] * g[k][m] * g[l][n];
+              K[(b * dim + i) * dim + j] = sum;
+            }
+  }
+
+
   /**
    * A hyperelastic material: an energy density Psi(F; a) per unit reference
    * volume, its first Piola-Kirchhoff stress P = dPsi/dF and the tangent
@@ -140,17 +163,7 @@ namespace tissuefem::materials
     {
       Tensor<4, dim> A;
       stress_and_tangent(F, fibre, P, A, TangentMethod::hand_coded);
-      for (unsigned int k = 0, b = 0; k <= dim; ++k)
-        for (unsigned int l = k; l <= dim; ++l, ++b)
-          for (unsigned int i = 0; i < dim; ++i)
-            for (unsigned int j = 0; j < dim; ++j)
-              {
-                double sum = 0;
-                for (unsigned int m = 0; m < dim; ++m)
-                  for (unsigned int n = 0; n < dim; ++n)
-                    sum += A[i][m][j][n] * g[k][m] * g[l][n];
-                K[(b * dim + i) * dim + j] = sum;
-              }
+      contract_simplex_blocks(A, g, K);
     }
 
     /// Whether simplex_stiffness() is the model's own, cheaper than
