@@ -3,8 +3,9 @@
 // linearly implicit Euler asks between factorizations) against the one
 // assembled with the Jacobian: on random states of P1 triangles and
 // tetrahedra (the lean kernel, which lifts the moving prescribed values
-// from those cells' own matrices), neo-Hookean and St Venant-Kirchhoff
-// (whose compressed cells have negative diagonal entries), consistent and
+// from those cells' own matrices), neo-Hookean, St Venant-Kirchhoff
+// (whose compressed cells have negative diagonal entries) and corotational
+// (whose cell matrices the model forms itself), consistent and
 // lumped mass, with the left end clamped and the right end moved (so that
 // the lifting has an increment to carry):
 // - at the state whose Jacobian was assembled, the two residuals are equal
@@ -161,6 +162,9 @@ main(int argc, char **argv)
                true);
       check<3>("P1 tetrahedra, St Venant-Kirchhoff, " + mass + " mass",
                scene(3, "simplex", "St Venant-Kirchhoff", mass),
+               true);
+      check<3>("P1 tetrahedra, corotational, " + mass + " mass",
+               scene(3, "simplex", "corotational linear elastic", mass),
                true);
     }
   check<3>("Q1 hexahedra, neo-Hookean",

@@ -150,8 +150,8 @@ namespace tissuefem::materials
      * K_kl = sum_mn A_imjn g_k,m g_l,n, for k <= l in the order (0,0),
      * (0,1), ..., (0,d), (1,1), ..., each dim x dim row-major into @p K (as
      * solid::LinearSimplexKernel packs a cell matrix). This default
-     * contracts the hand-coded A of stress_and_tangent(); models whose
-     * tangent has a structure cheaper to contract than to write out
+     * contracts the A of stress_and_tangent() (the fastest method); models
+     * whose tangent has a structure cheaper to contract than to write out
      * override it and has_simplex_stiffness().
      */
     virtual void
@@ -162,7 +162,7 @@ namespace tissuefem::materials
                       double               *K) const
     {
       Tensor<4, dim> A;
-      stress_and_tangent(F, fibre, P, A, TangentMethod::hand_coded);
+      stress_and_tangent(F, fibre, P, A, TangentMethod::fastest);
       contract_simplex_blocks(A, g, K);
     }
 

@@ -80,6 +80,8 @@ namespace tissuefem::solvers::linear
         amg.reset();
         modes.reset();
         diagonal.clear();
+        diagonal_at.clear();
+        diagonal_column.clear();
         diagonal_of = nullptr;
       }
 
@@ -119,7 +121,7 @@ namespace tissuefem::solvers::linear
       /// The matrix's diagonal at the build, owned rows in order, where
       /// it is in the matrix's values, and of which matrix.
       std::vector<double>     diagonal;
-      std::vector<int>        diagonal_at;
+      std::vector<int>        diagonal_at, diagonal_column;
       const Epetra_CrsMatrix *diagonal_of          = nullptr;
       int                     diagonal_nonzeros    = 0;
       unsigned int            reference_iterations = 0;
@@ -268,13 +270,26 @@ namespace tissuefem::solvers::linear
       const Epetra_CrsMatrix &matrix = A.trilinos_matrix();
       int                    *offsets, *columns;
       double                 *values;
-      bool                    moved
-        = &matrix != diagonal_of || matrix.NumMyNonzeros() != diagonal_nonzeros
-          || matrix.ExtractCrsDataPointers(offsets, columns, values) != 0;
-      for (unsigned int i = 0; !moved && i < diagonal.size(); ++i)
+      // Where the compressed rows could not be read at the build, the test
+      // is off on this process (the processes still decide together).
+      bool moved
+        = diagonal_of != nullptr
+          && (&matrix != diagonal_of
+              || matrix.NumMyNonzeros() != diagonal_nonzeros
+              || matrix.NumMyRows() != static_cast<int>(diagonal.size())
+              || matrix.ExtractCrsDataPointers(offsets, columns, values) != 0);
+      for (unsigned int i = 0; diagonal_of && !moved && i < diagonal.size();
+           ++i)
         {
-          const double now
-            = diagonal_at[i] < 0 ? 0. : std::abs(values[diagonal_at[i]]);
+          // Another layout at the same address (a matrix made anew) is a
+          // new matrix.
+          const int at = diagonal_at[i];
+          if (at >= 0 && columns[at] != diagonal_column[i])
+            {
+              moved = true;
+              break;
+            }
+          const double now  = at < 0 ? 0. : std::abs(values[at]);
           const double then = std::abs(diagonal[i]);
           moved = now > diagonal_change * then || then > diagonal_change * now;
         }
@@ -292,12 +307,14 @@ namespace tissuefem::solvers::linear
     {
       diagonal.clear();
       diagonal_at.clear();
-      diagonal_of       = &matrix;
+      diagonal_column.clear();
+      diagonal_of       = nullptr;
       diagonal_nonzeros = matrix.NumMyNonzeros();
       int    *offsets, *columns;
       double *values;
       if (matrix.ExtractCrsDataPointers(offsets, columns, values) != 0)
         return;
+      diagonal_of = &matrix;
       for (int i = 0; i < matrix.NumMyRows(); ++i)
         {
           const int own = matrix.ColMap().LID(
@@ -307,6 +324,7 @@ namespace tissuefem::solvers::linear
             if (columns[k] == own)
               at = k;
           diagonal_at.push_back(at);
+          diagonal_column.push_back(own);
           diagonal.push_back(at < 0 ? 0. : values[at]);
         }
     }
