@@ -199,7 +199,8 @@ namespace tissuefem::time
             context->linear_solver.reset();
           // Between factorizations a direct solver reads no matrix: the
           // step needs the residual only (the muscle at the haptic rate:
-          // its Jacobian was 1.7 of a 2.7 ms step).
+          // assembling the Jacobian made its assembly 2.0 ms of a 2.7 ms
+          // step, against 0.44 ms without).
           lift_boundary_increment(c,
                                   t_new,
                                   next.u,

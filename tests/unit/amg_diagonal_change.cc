@@ -80,27 +80,16 @@ namespace
   Solve
   solve(solvers::LinearSolver &solver, const MatrixType &A)
   {
-    const IndexSet          owned = owned_rows(A.m());
-    VectorType              exact(owned, MPI_COMM_WORLD);
-    tissuefem_tests::Random random(7);
-    for (unsigned int i = 0; i < A.m(); ++i)
-      {
-        const double value = 2. + random.uniform();
-        if (owned.is_element(i))
-          exact[i] = value;
-      }
-    exact.compress(VectorOperation::insert);
-    VectorType b(exact), x(exact);
+    const VectorType exact = tissuefem_tests::random_vector(A, 7);
+    VectorType       b(exact), x(exact);
     A.vmult(b, exact);
     x                 = 0;
     const auto before = solver.statistics();
     solver.solve(A, x, b, true);
-    VectorType difference(x);
-    difference -= exact;
     return {x,
             solver.statistics().iterations - before.iterations,
             solver.statistics().setups - before.setups,
-            difference.linfty_norm() / exact.linfty_norm()};
+            tissuefem_tests::relative_error(x, exact)};
   }
 } // namespace
 

@@ -8,10 +8,15 @@
 
 #include <tissuefem/base/parallel.h>
 
+#include "../tests.h"
+
+#include <cstdint>
+
 namespace tissuefem_tests
 {
   using namespace dealii;
   using tissuefem::MatrixType;
+  using tissuefem::VectorType;
 
   /// The rows this process owns of @p n, in one contiguous range.
   inline IndexSet
@@ -67,5 +72,33 @@ namespace tissuefem_tests
           A.set(i, i + m, -scale);
       }
     A.compress(VectorOperation::insert);
+  }
+
+
+  /// A random vector in [1, 3) of A's row layout (the same on any number
+  /// of processes: drawn for every row, kept for the owned ones).
+  inline VectorType
+  random_vector(const MatrixType &A, const std::uint64_t seed)
+  {
+    const IndexSet owned = owned_rows(A.m());
+    VectorType     x(owned, MPI_COMM_WORLD);
+    Random         random(seed);
+    for (unsigned int i = 0; i < A.m(); ++i)
+      {
+        const double value = 2. + random.uniform();
+        if (owned.is_element(i))
+          x[i] = value;
+      }
+    x.compress(VectorOperation::insert);
+    return x;
+  }
+
+  /// max |x - exact| / max |exact|.
+  inline double
+  relative_error(const VectorType &x, const VectorType &exact)
+  {
+    VectorType difference = x;
+    difference -= exact;
+    return difference.linfty_norm() / exact.linfty_norm();
   }
 } // namespace tissuefem_tests

@@ -37,33 +37,8 @@ namespace
 {
   using tissuefem_tests::laplacian;
   using tissuefem_tests::owned_rows;
-
-  /// A random vector in [1, 3) of A's row layout (the same on any number
-  /// of processes: drawn for every row, kept for the owned ones).
-  VectorType
-  random_vector(const MatrixType &A, const std::uint64_t seed)
-  {
-    const IndexSet          owned = owned_rows(A.m());
-    VectorType              x(owned, MPI_COMM_WORLD);
-    tissuefem_tests::Random random(seed);
-    for (unsigned int i = 0; i < A.m(); ++i)
-      {
-        const double value = 2. + random.uniform();
-        if (owned.is_element(i))
-          x[i] = value;
-      }
-    x.compress(VectorOperation::insert);
-    return x;
-  }
-
-  /// max |x - exact| / max |exact|.
-  double
-  relative_error(const VectorType &x, const VectorType &exact)
-  {
-    VectorType difference = x;
-    difference -= exact;
-    return difference.linfty_norm() / exact.linfty_norm();
-  }
+  using tissuefem_tests::random_vector;
+  using tissuefem_tests::relative_error;
 
   /// Solves A x = A exact and checks x against exact.
   void
