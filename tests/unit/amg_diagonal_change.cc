@@ -1,7 +1,9 @@
 // 'cg amg' rebuilds its kept hierarchy before a solve when the matrix's
 // diagonal has moved by more than 'AMG diagonal change' since the build,
 // as a penalty contact engaging moves it (its nodes' entries 100 to 10,000
-// times larger), instead of first trying the kept hierarchy. On the 2D
+// times larger), instead of first trying the kept hierarchy, the first
+// time; later it tries first, and skips 1, 2, 4 (at most 8) tries after
+// each failed one, 1 again after a kept one. On the 2D
 // five-point Laplacian (rows split among the processes), a band of rows
 // gets a penalty of 1e4 on the diagonal, on the same matrix object:
 // - the kept solver must then give the answer a fresh solver gives on the
@@ -12,7 +14,11 @@
 //   above can tell the two apart;
 // - a smaller change (the band's diagonal 1.25 times larger) keeps the
 //   hierarchy;
-// - the penalty released (the entries 2,500 times smaller) rebuilds it.
+// - the penalty released (the entries 2,500 times smaller) rebuilds it;
+// - with 'AMG rebuild factor' 2, the penalty switched on and off eight
+//   times gives the pattern the rule predicts when every try fails, and a
+//   penalty tripled and back (a change the kept hierarchy solves) is kept
+//   and resets the skipping.
 // 'AMG rebuild factor' is set out of reach, so that only this test
 // rebuilds. (A uniform growth of the whole matrix by 1.2 already fails
 // ML's Chebyshev smoother, 8 iterations becoming more than 16, and by 1.5
@@ -54,13 +60,14 @@ namespace
   }
 
   std::unique_ptr<solvers::LinearSolver>
-  cg_amg(const std::string &diagonal_change)
+  cg_amg(const std::string &diagonal_change,
+         const std::string &rebuild_factor = "1e6")
   {
     ParameterHandler prm;
     solvers::LinearSolver::declare_parameters(prm);
     prm.enter_subsection("Linear solver");
     prm.set("Type", "cg amg");
-    prm.set("AMG rebuild factor", "1e6");
+    prm.set("AMG rebuild factor", rebuild_factor);
     prm.set("AMG diagonal change", diagonal_change);
     prm.leave_subsection();
     return std::make_unique<solvers::LinearSolver>(prm);
@@ -156,5 +163,47 @@ main(int argc, char **argv)
         "the penalty released (a diagonal 3,000 times smaller) rebuilds it",
         std::to_string(released.setups) + " builds, relative error "
           + std::to_string(released.error));
+
+  // Learnt tries, with 'AMG rebuild factor' 2 (a try fails past twice the
+  // build's first iterations): a sequence of band penalties, each a moved
+  // diagonal, solved by one solver. Each solve is classified against a
+  // fresh solver's iterations on the same matrix: D rebuilt without a try
+  // (a build, the fresh iterations), F tried and failed (a build, more
+  // iterations), K tried and kept (no build).
+  const auto pattern = [&](const std::vector<double> &penalties) {
+    fill(A, 1., penalties[0]);
+    const auto learner = cg_amg("2", "2");
+    solve(*learner, A);
+    std::string letters;
+    for (unsigned int k = 1; k < penalties.size(); ++k)
+      {
+        fill(A, 1., penalties[k]);
+        const unsigned int f = solve(*cg_amg("2"), A).iterations;
+        const Solve        s = solve(*learner, A);
+        letters += s.error > 1e-6                       ? '!'
+                   : s.setups == 0                      ? 'K'
+                   : s.setups == 1 && s.iterations == f ? 'D'
+                   : s.setups == 1 && s.iterations > f  ? 'F'
+                                                        : '?';
+      }
+    return letters;
+  };
+  // Switched on and off, the kept hierarchy fails each try (as on SOFA's
+  // beam landing on its floor): the first change is rebuilt without a
+  // try, and each failed try skips 1, 2, 4 tries.
+  const std::string toggled = pattern({0, 1e4, 0, 1e4, 0, 1e4, 0, 1e4, 0});
+  check(toggled == "DFDFDDFD",
+        "a penalty switched on and off: rebuilt at once first, then tried, "
+        "each failed try skipping 1, 2, 4 tries",
+        "pattern " + toggled
+          + " (D rebuilt at once, F tried and failed, K "
+            "tried and kept)");
+  // A penalty tripled, and back, is a moved diagonal the kept hierarchy
+  // solves within the factor: kept, and the next failure skips one try
+  // only.
+  const std::string kept_try = pattern({1e4, 3e4, 1e4, 0, 1e4, 0, 1e4, 0});
+  check(kept_try == "DKFDFDD",
+        "a kept try resets the skipping: the next failed try skips one",
+        "pattern " + kept_try);
   return tissuefem_tests::exit_status();
 }

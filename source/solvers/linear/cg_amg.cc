@@ -29,10 +29,15 @@ namespace tissuefem::solvers::linear
      * solve with the kept hierarchy may take 'AMG rebuild factor' times the
      * iterations of the first solve after its build, no more; then (or when
      * CG fails) it is rebuilt from the current matrix and the solve made
-     * again. It is also rebuilt before a solve when a diagonal entry of the
-     * matrix has changed by more than 'AMG diagonal change' since the
-     * build (contact engaging), without the attempt. Needs a symmetric
-     * positive definite matrix.
+     * again. When a diagonal entry of the matrix has changed by more than
+     * 'AMG diagonal change' since the build (a penalty contact engaging or
+     * letting go), whether the kept hierarchy is tried first is learnt
+     * from the last such tries: the first time, and for 1, 2, 4 or 8 such
+     * solves after each failed try (doubling while tries keep failing),
+     * it is rebuilt without the try. On SOFA's large beam a try fails while
+     * the beam lands on its floor (each try 10 iterations spent) and
+     * succeeds once it rests (5-9 iterations against a 360 ms build;
+     * doc/studies.md). Needs a symmetric positive definite matrix.
      */
     class CgAmg : public Interface
     {
@@ -83,6 +88,8 @@ namespace tissuefem::solvers::linear
         diagonal_at.clear();
         diagonal_column.clear();
         diagonal_of = nullptr;
+        untried     = 1;
+        backoff     = 1;
       }
 
       void
@@ -126,6 +133,10 @@ namespace tissuefem::solvers::linear
       int                     diagonal_nonzeros    = 0;
       unsigned int            reference_iterations = 0;
       unsigned int            components           = 1;
+      /// Solves with a moved diagonal still to rebuild without trying the
+      /// kept hierarchy, and how many the next failed try sets.
+      unsigned int untried = 1;
+      unsigned int backoff = 1;
     };
 
 
@@ -163,16 +174,20 @@ namespace tissuefem::solvers::linear
         "AMG diagonal change",
         "1.5",
         Patterns::Double(1),
-        "For 'cg amg': rebuild the multigrid hierarchy before a solve, "
-        "without first trying the kept one, when an entry of the matrix's "
-        "diagonal has grown or shrunk by more than this factor since the "
-        "build. The hierarchy's smoothers are scaled by the diagonal they "
-        "were built with: a penalty contact engaging makes its nodes' "
-        "entries 100 times larger, and the kept hierarchy then fails (the "
-        "attempt cost 10-14 CG iterations a step on SOFA's large beam, "
-        "doc/studies.md), where the diagonal drifts by at most 1.17 "
-        "between contact steps. Changes of the whole matrix are left to "
-        "'AMG rebuild factor'. Values above 1e300 turn the test off.");
+        "For 'cg amg': a solve whose matrix has a diagonal entry grown or "
+        "shrunk by more than this factor since the hierarchy's build (a "
+        "penalty contact engaging or letting go: its nodes' entries 100 "
+        "times larger or smaller) rebuilds the hierarchy without first "
+        "trying the kept one the first time, and after each try that "
+        "failed ('AMG rebuild factor') for the next 1, 2, 4 or 8 such "
+        "solves (doubling while tries fail; one again after a kept try). "
+        "On SOFA's large beam a try fails while the beam lands on its "
+        "floor (10 CG iterations spent) and succeeds once it rests (5-9 "
+        "iterations against a 360 ms build): rebuilding at every such "
+        "solve made its 2 s run 17.7 s instead of 15.1 s (doc/studies.md). "
+        "Without contact the diagonal drifts by at most 1.17 over 20 steps. "
+        "Changes of the whole matrix are left to 'AMG rebuild factor'. "
+        "Values above 1e300 turn the test off (every solve tries first).");
       prm.leave_subsection();
     }
 
@@ -185,9 +200,14 @@ namespace tissuefem::solvers::linear
                  const double            forcing,
                  LinearSolverStatistics &stats)
     {
-      const double tolerance = std::max(relative_tolerance, forcing);
-      if (!amg || diagonal_moved(A))
+      const double tolerance   = std::max(relative_tolerance, forcing);
+      const bool   moved       = amg && diagonal_moved(A);
+      const bool   untried_now = moved && untried > 0;
+      if (untried_now)
+        --untried;
+      if (!amg || untried_now)
         build_amg(A, stats);
+      const bool trial = moved && !untried_now;
       // A kept hierarchy gets 'AMG rebuild factor' times the iterations of
       // its first solve, no more: a matrix that changed much (contact
       // engaging: measured 680-1000 iterations a step on SOFA's beam with
@@ -202,7 +222,16 @@ namespace tissuefem::solvers::linear
       // The caller's starting iterate, for the retry with a new hierarchy.
       const VectorType start(x);
       unsigned int     iterations = cg_solve(A, x, b, tolerance, cap);
-      if (iterations == std::numeric_limits<unsigned int>::max())
+      // A failed try with a moved diagonal skips the next 'backoff' tries,
+      // a successful one makes the next failure skip one.
+      const bool failed
+        = iterations == std::numeric_limits<unsigned int>::max();
+      if (trial)
+        {
+          untried = failed ? backoff : 0;
+          backoff = failed ? std::min(2 * backoff, 8u) : 1;
+        }
+      if (failed)
         {
           stats.iterations += cap;
           x = start;
