@@ -30,6 +30,8 @@ namespace tissuefem::solid
       std::vector<Tensor<1, dim>> a;
       std::vector<Tensor<4, dim>> A;
       std::vector<double>         K;
+      /// One direct cell's packed matrix, on its way into the matrix.
+      std::vector<double> cell_K;
       /// The shape gradients of each point's cell.
       std::vector<const Tensor<1, dim> *> g;
     };
@@ -175,8 +177,67 @@ namespace tissuefem::solid
         for (unsigned int i = 0; i < n_dofs; ++i)
           row_positions[fill[row[c * n_dofs + local_index[i]]]++]
             = c * n_dofs + i;
+    // Direct cells' rows, for their matrices' scatter; the others' matrices
+    // are kept.
+    cell_row.assign(n_cells * n_dofs, -1);
+    slot.assign(n_cells, -1);
+    n_kept = 0;
+    for (unsigned int c = 0; c < n_cells; ++c)
+      if (direct[c])
+        for (unsigned int i = 0; i < n_dofs; ++i)
+          cell_row[c * n_dofs + i] = row[c * n_dofs + local_index[i]];
+      else
+        slot[c] = n_kept++;
+    make_phases();
     vectors.assign(n_cells * n_dofs, 0.);
     matrices.clear();
+  }
+
+
+  template <int dim>
+  void
+  LinearSimplexKernel<dim>::make_phases()
+  {
+    // Greedy colouring in batch order: each batch takes the lowest colour
+    // no earlier batch sharing one of its nodes (ghosted index of the
+    // node's first component) has.
+    int n_ghost = 0;
+    for (const int g : ghost)
+      n_ghost = std::max(n_ghost, g + 1);
+    std::vector<std::vector<unsigned int>> node_colours(n_ghost);
+    std::vector<unsigned int>              colour(batches.size());
+    std::vector<bool>                      taken;
+    unsigned int                           n_colours = 0;
+    const auto for_nodes = [&](const Batch &batch, const auto &visit) {
+      for (unsigned int o = batch.begin; o < batch.end; ++o)
+        for (unsigned int k = 0; k < n_nodes; ++k)
+          visit(ghost[order[o] * n_dofs + k * dim]);
+    };
+    for (unsigned int b = 0; b < batches.size(); ++b)
+      {
+        taken.assign(n_colours + 1, false);
+        for_nodes(batches[b], [&](const int node) {
+          for (const unsigned int used : node_colours[node])
+            taken[used] = true;
+        });
+        colour[b]
+          = std::find(taken.begin(), taken.end(), false) - taken.begin();
+        n_colours = std::max(n_colours, colour[b] + 1);
+        for_nodes(batches[b], [&](const int node) {
+          auto &list = node_colours[node];
+          if (std::find(list.begin(), list.end(), colour[b]) == list.end())
+            list.push_back(colour[b]);
+        });
+      }
+    phase_begin.assign(n_colours + 1, 0);
+    for (const unsigned int c : colour)
+      ++phase_begin[c + 1];
+    for (unsigned int p = 0; p < n_colours; ++p)
+      phase_begin[p + 1] += phase_begin[p];
+    phase_batches.resize(batches.size());
+    std::vector<unsigned int> fill(phase_begin.begin(), phase_begin.end() - 1);
+    for (unsigned int b = 0; b < batches.size(); ++b)
+      phase_batches[fill[colour[b]]++] = b;
   }
 
 
@@ -199,6 +260,7 @@ namespace tissuefem::solid
         w.A.resize(max_points);
         w.K.resize(max_points * n_packed);
         w.g.resize(max_points);
+        w.cell_K.resize(n_packed);
       }
     std::array<unsigned int, batch_size> first_point;
     std::array<bool, batch_size>         skipped;
@@ -283,10 +345,14 @@ namespace tissuefem::solid
                                          const Input       &input,
                                          const bool         blocks)
   {
-    const auto &w       = work_space<dim>();
-    const bool  elastic = input.internal && input.u != nullptr;
-    double     *r       = &vectors[c * n_dofs];
-    double     *K = wants_matrix(input, c) ? &matrices[c * n_packed] : nullptr;
+    auto      &w       = work_space<dim>();
+    const bool elastic = input.internal && input.u != nullptr;
+    double    *r       = &vectors[c * n_dofs];
+    // A kept matrix, or a direct cell's on its way into the matrix.
+    double *K = !wants_matrix(input, c) ? nullptr
+                : slot[c] >= 0          ? &matrices[slot[c] * n_packed]
+                : input.matrix_rows     ? w.cell_K.data()
+                                        : nullptr;
     std::fill(r, r + n_dofs, 0.);
     if (K)
       std::fill(K, K + n_packed, 0.);
@@ -360,6 +426,39 @@ namespace tissuefem::solid
             for (unsigned int i = 0; i < dim; ++i)
               K[block(k, l) + i * dim + i]
                 += shift * mass(rho, V, k == l, input.lumped_mass);
+        if (slot[c] < 0)
+          scatter(c, K, input);
+      }
+  }
+
+
+  template <int dim>
+  void
+  LinearSimplexKernel<dim>::scatter(const unsigned int c,
+                                    const double      *K,
+                                    const Input       &input) const
+  {
+    const std::uint16_t *entries = input.matrix_entries->data();
+    for (unsigned int i = 0; i < n_dofs; ++i)
+      {
+        const unsigned int k = i / dim, a = i % dim;
+        double *values = (*input.matrix_rows)[cell_row[c * n_dofs + i]];
+        const std::uint16_t *e
+          = &entries[(c * n_dofs + local_index[i]) * n_dofs];
+        // Row (k, a): of block (k, l) its row a, of block (l, k) (l < k,
+        // the one kept) its column a.
+        for (unsigned int l = 0; l < n_nodes; ++l)
+          {
+            const unsigned int start
+              = l >= k ? block(k, l) + a * dim : block(l, k) + a;
+            const unsigned int  stride = l >= k ? 1 : dim;
+            const unsigned int *J      = &local_index[l * dim];
+            if (mass_only)
+              values[e[J[a]]] += K[start + a * stride];
+            else
+              for (unsigned int b = 0; b < dim; ++b)
+                values[e[J[b]]] += K[start + b * stride];
+          }
       }
   }
 
@@ -368,8 +467,10 @@ namespace tissuefem::solid
   std::vector<std::pair<unsigned int, double>>
   LinearSimplexKernel<dim>::evaluate(const Input &input)
   {
+    Assert(!input.jacobian || !input.matrix_rows || input.matrix_entries,
+           ExcInternalError());
     if (input.jacobian)
-      matrices.resize(volume.size() * n_packed);
+      matrices.resize(n_kept * n_packed);
     mass_only = !(input.internal && input.u != nullptr);
     // An active region computes its own cells only, batched afresh, so
     // that its cost follows its size.
@@ -380,20 +481,30 @@ namespace tissuefem::solid
     const auto &run   = compact ? selection_batches : batches;
     std::vector<std::pair<unsigned int, double>> inverted;
     std::mutex                                   lock;
-    parallel::apply_to_subranges(
-      0u,
-      static_cast<unsigned int>(run.size()),
-      [&](const unsigned int begin, const unsigned int end) {
-        std::vector<std::pair<unsigned int, double>> found;
-        for (unsigned int b = begin; b < end; ++b)
-          evaluate_batch(run[b], cells, input, found);
-        if (!found.empty())
-          {
-            std::lock_guard<std::mutex> guard(lock);
-            inverted.insert(inverted.end(), found.begin(), found.end());
-          }
-      },
-      8);
+    // Matrices into the Trilinos rows: a phase at a time (no two batches of
+    // one share a node). Otherwise all batches at once.
+    const bool into_matrix = input.jacobian && input.matrix_rows;
+    Assert(!into_matrix || !compact, ExcInternalError());
+    const unsigned int n_phases = into_matrix ? phase_begin.size() - 1 : 1;
+    for (unsigned int p = 0; p < n_phases; ++p)
+      parallel::apply_to_subranges(
+        into_matrix ? phase_begin[p] : 0u,
+        into_matrix ? phase_begin[p + 1]
+                    : static_cast<unsigned int>(run.size()),
+        [&](const unsigned int begin, const unsigned int end) {
+          std::vector<std::pair<unsigned int, double>> found;
+          for (unsigned int b = begin; b < end; ++b)
+            evaluate_batch(run[into_matrix ? phase_batches[b] : b],
+                           cells,
+                           input,
+                           found);
+          if (!found.empty())
+            {
+              std::lock_guard<std::mutex> guard(lock);
+              inverted.insert(inverted.end(), found.begin(), found.end());
+            }
+        },
+        8);
     std::sort(inverted.begin(), inverted.end());
     return inverted;
   }
@@ -509,10 +620,7 @@ namespace tissuefem::solid
 
   template <int dim>
   void
-  LinearSimplexKernel<dim>::add_direct(double                      *residual,
-                                       const std::vector<double *> &row_values,
-                                       const std::vector<std::uint16_t> &entry,
-                                       const bool jacobian) const
+  LinearSimplexKernel<dim>::add_direct(double *residual) const
   {
     const unsigned int n_rows = row_begin.size() - 1;
     parallel::apply_to_subranges(
@@ -525,37 +633,11 @@ namespace tissuefem::solid
             for (unsigned int s = row_begin[r]; s < row_begin[r + 1]; ++s)
               sum += vectors[row_positions[s]];
             residual[r] += sum;
-            if (!jacobian)
-              continue;
-            double *values = row_values[r];
-            for (unsigned int s = row_begin[r]; s < row_begin[r + 1]; ++s)
-              {
-                const unsigned int   position = row_positions[s];
-                const unsigned int   c        = position / n_dofs;
-                const unsigned int   row      = position % n_dofs;
-                const unsigned int   k = row / dim, a = row % dim;
-                const std::uint16_t *e
-                  = &entry[(c * n_dofs + local_index[row]) * n_dofs];
-                const double *K = &matrices[c * n_packed];
-                // Row (k, a): of block (k, l) its row a, of block (l, k)
-                // (l < k, the one kept) its column a.
-                for (unsigned int l = 0; l < n_nodes; ++l)
-                  {
-                    const unsigned int start
-                      = l >= k ? block(k, l) + a * dim : block(l, k) + a;
-                    const unsigned int  stride = l >= k ? 1 : dim;
-                    const unsigned int *J      = &local_index[l * dim];
-                    if (mass_only)
-                      values[e[J[a]]] += K[start + a * stride];
-                    else
-                      for (unsigned int b = 0; b < dim; ++b)
-                        values[e[J[b]]] += K[start + b * stride];
-                  }
-              }
           }
       },
       256);
   }
+
 
   template <int dim>
   std::size_t
@@ -568,7 +650,9 @@ namespace tissuefem::solid
            + memory_consumption(ghost) + memory_consumption(local_index)
            + memory_consumption(point_begin) + memory_consumption(point_fibre)
            + memory_consumption(point_weight) + memory_consumption(row_begin)
-           + memory_consumption(row_positions) + memory_consumption(vectors)
+           + memory_consumption(row_positions) + memory_consumption(cell_row)
+           + memory_consumption(phase_batches) + memory_consumption(phase_begin)
+           + memory_consumption(slot) + memory_consumption(vectors)
            + memory_consumption(matrices);
   }
 

@@ -62,6 +62,11 @@ namespace tissuefem::solid
     input.external = request.external;
     input.jacobian = request.jacobian;
     input.cells    = request.cells;
+    if (request.jacobian)
+      {
+        input.matrix_rows    = &access.row_values;
+        input.matrix_entries = &access.entry;
+      }
     // A lifting residual without the Jacobian (implicit_residual_lifting()
     // for a kept factorization): the matrices of the cells whose prescribed
     // values move, for the vector's share of the lifting below.
@@ -116,7 +121,8 @@ namespace tissuefem::solid
 
     // An active region (Jeffrey's node freezing): the cells the kernel
     // computed, in its order. Otherwise every owned row gathers the
-    // entries of the direct cells, and the others follow.
+    // residual entries of the direct cells (their matrices went into the
+    // Jacobian as the kernel computed them), and the others follow.
     const bool active_region = request.cells && !request.jacobian;
     Assert(!active_region || unconstrained, ExcInternalError());
     if (active_region)
@@ -126,10 +132,7 @@ namespace tissuefem::solid
             add_cell(c);
         }
     else if (!loads_in_system)
-      lean->add_direct(local,
-                       access.row_values,
-                       access.entry,
-                       request.jacobian);
+      lean->add_direct(local);
 
     // Cells with constrained or non-owned dofs: element order, then the
     // request's constraints.

@@ -35,13 +35,19 @@ namespace tissuefem::solid
    * ghosted vectors; cells are ordered into batches of one material, so
    * that the model is called once per batch (materials::Interface::
    * stresses()) and no virtual call or allocation happens per cell.
-   * evaluate() computes every cell's element vector and matrix into
-   * per-cell storage, in parallel (the cells are independent); add_direct()
-   * then adds those of cells without constraints into the owned rows of the
-   * residual and the Trilinos matrix in parallel over rows, each row
-   * summing its cells in a fixed order: the result does not depend on the
-   * number of threads. Cells with constrained or non-owned dofs are left
-   * to the caller (AffineConstraints).
+   * evaluate() computes every cell's element vector into per-cell
+   * storage, in parallel (the cells are independent); add_direct() then
+   * adds those of cells without constraints into the owned rows of the
+   * residual in parallel over rows, each row summing its cells in a fixed
+   * order. The element matrices of those cells go straight into the
+   * Trilinos matrix as they are computed (Input::matrix_rows), in phases
+   * of batches that share no node, the phases one after the other: no
+   * two threads write one entry, and each entry sums its cells in phase
+   * order. Neither sum depends on the number of threads. Storing the
+   * matrices for a gather by rows cost 720 bytes per tetrahedron and, on
+   * SOFA's beams, the gather alone a third of the assembly
+   * (doc/studies.md). Cells with constrained or non-owned dofs keep their
+   * matrices (cell_matrix()) for the caller (AffineConstraints).
    */
   template <int dim>
   class LinearSimplexKernel
@@ -129,6 +135,13 @@ namespace tissuefem::solid
       /// With jacobian: the cells whose matrices are computed (by cache
       /// index; all if null); the others' are left as they were.
       const std::vector<bool> *jacobian_cells = nullptr;
+      /// With jacobian: the owned rows' values in the Trilinos matrix and
+      /// the positions there of each direct cell's entries, entry (i, j) of
+      /// cell c (element order) of its row at matrix_entries[(c * n + i) *
+      /// n + j]. The direct cells' matrices are added there; without, they
+      /// are dropped (only the others' are kept: cell_matrix()).
+      const std::vector<double *>      *matrix_rows    = nullptr;
+      const std::vector<std::uint16_t> *matrix_entries = nullptr;
     };
 
     /**
@@ -156,14 +169,10 @@ namespace tissuefem::solid
     double
     kinetic_energy(const double *v) const;
 
-    /// Adds the element vectors (and matrices) of direct cells into the
-    /// owned rows @p residual and @p row_values (Trilinos' row storage, at
-    /// the positions @p entry[(c * n + i) * n + j]).
+    /// Adds the element vectors of direct cells into the owned rows
+    /// @p residual (their matrices went in with evaluate()).
     void
-    add_direct(double                           *residual,
-               const std::vector<double *>      &row_values,
-               const std::vector<std::uint16_t> &entry,
-               const bool                        jacobian) const;
+    add_direct(double *residual) const;
 
     /// Bytes held (per-cell data and the last evaluation's element
     /// vectors and matrices).
@@ -179,7 +188,7 @@ namespace tissuefem::solid
     }
 
     /// The element vector of cached cell @p c, and entry (i, j) of its
-    /// matrix (the kernel's dof order).
+    /// matrix (the kernel's dof order; a cell that is not direct).
     const double *
     cell_vector(const unsigned int c) const
     {
@@ -190,11 +199,11 @@ namespace tissuefem::solid
                 const unsigned int i,
                 const unsigned int j) const
     {
+      Assert(slot[c] >= 0, ExcInternalError());
+      const double      *K = &matrices[slot[c] * n_packed];
       const unsigned int k = i / dim, l = j / dim;
-      return k <= l ? matrices[c * n_packed + block(k, l) + (i % dim) * dim
-                               + j % dim]
-                    : matrices[c * n_packed + block(l, k) + (j % dim) * dim
-                               + i % dim];
+      return k <= l ? K[block(k, l) + (i % dim) * dim + j % dim]
+                    : K[block(l, k) + (j % dim) * dim + i % dim];
     }
 
   private:
@@ -235,6 +244,16 @@ namespace tissuefem::solid
                  const Input       &input,
                  const bool         blocks);
 
+    /// Adds the packed matrix @p K of direct cell @p c into
+    /// Input::matrix_rows.
+    void
+    scatter(const unsigned int c, const double *K, const Input &input) const;
+
+    /// Colours the batches so that no two of one colour share a node, and
+    /// orders them by colour into phase_batches and phase_begin.
+    void
+    make_phases();
+
     /// Evaluates the cells of one batch.
     void
     evaluate_batch(const Batch                                  &batch,
@@ -274,12 +293,22 @@ namespace tissuefem::solid
     /// landing there, [row_begin[r], row_begin[r + 1]).
     std::vector<unsigned int> row_begin;
     std::vector<unsigned int> row_positions;
-    std::vector<double>       vectors, matrices;
+    /// Per direct cell: the owned row of each dof [c * n_dofs + i] (kernel
+    /// order).
+    std::vector<int> cell_row;
+    /// Batches by phase: phase p is phase_batches[phase_begin[p],
+    /// phase_begin[p + 1]) (indices into batches).
+    std::vector<unsigned int> phase_batches, phase_begin;
+    /// Per cache index: where the cell's matrix is kept in matrices (-1 for
+    /// a direct cell, whose matrix is not kept).
+    std::vector<int>    slot;
+    int                 n_kept = 0;
+    std::vector<double> vectors, matrices;
     /// The most points of one cell (1, or n_q where a fibre varies).
     unsigned int most_points = 1;
     /// Whether the last evaluation's matrices hold the mass only (no
     /// elastic part: the nodal dilatation's), which couples each component
-    /// with itself alone: add_direct() then adds a third of the entries.
+    /// with itself alone: scatter() then adds a third of the entries.
     bool mass_only = false;
   };
 } // namespace tissuefem::solid
