@@ -30,8 +30,6 @@ namespace tissuefem::solid
       std::vector<Tensor<1, dim>> a;
       std::vector<Tensor<4, dim>> A;
       std::vector<double>         K;
-      /// One direct cell's packed matrix, on its way into the matrix.
-      std::vector<double> cell_K;
       /// The shape gradients of each point's cell.
       std::vector<const Tensor<1, dim> *> g;
     };
@@ -260,7 +258,6 @@ namespace tissuefem::solid
         w.A.resize(max_points);
         w.K.resize(max_points * n_packed);
         w.g.resize(max_points);
-        w.cell_K.resize(n_packed);
       }
     std::array<unsigned int, batch_size> first_point;
     std::array<bool, batch_size>         skipped;
@@ -345,14 +342,15 @@ namespace tissuefem::solid
                                          const Input       &input,
                                          const bool         blocks)
   {
-    auto      &w       = work_space<dim>();
-    const bool elastic = input.internal && input.u != nullptr;
-    double    *r       = &vectors[c * n_dofs];
+    const auto &w       = work_space<dim>();
+    const bool  elastic = input.internal && input.u != nullptr;
+    double     *r       = &vectors[c * n_dofs];
     // A kept matrix, or a direct cell's on its way into the matrix.
-    double *K = !wants_matrix(input, c) ? nullptr
-                : slot[c] >= 0          ? &matrices[slot[c] * n_packed]
-                : input.matrix_rows     ? w.cell_K.data()
-                                        : nullptr;
+    std::array<double, n_packed> direct_K;
+    double                      *K = !wants_matrix(input, c) ? nullptr
+                                     : slot[c] >= 0 ? &matrices[slot[c] * n_packed]
+                                     : input.matrix_rows ? direct_K.data()
+                                                         : nullptr;
     std::fill(r, r + n_dofs, 0.);
     if (K)
       std::fill(K, K + n_packed, 0.);
@@ -467,7 +465,10 @@ namespace tissuefem::solid
   std::vector<std::pair<unsigned int, double>>
   LinearSimplexKernel<dim>::evaluate(const Input &input)
   {
-    Assert(!input.jacobian || !input.matrix_rows || input.matrix_entries,
+    // A direct cell left out of jacobian_cells would add nothing to the
+    // matrix: a Jacobian into the rows is of all cells.
+    Assert(!input.jacobian || !input.matrix_rows
+             || (input.matrix_entries && !input.jacobian_cells),
            ExcInternalError());
     if (input.jacobian)
       matrices.resize(n_kept * n_packed);

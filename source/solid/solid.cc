@@ -75,8 +75,8 @@ namespace tissuefem::solid
     element->setup(context());
     discretization.initialize_vector(ghosted_u, true);
     discretization.initialize_vector(ghosted_w, true);
-    build_jacobian_matrix(false);
     lean.reset();
+    build_jacobian_matrix(false);
     if (discretization.lean_kernel
         && element->lean_kernel()
              != formulations::Interface<dim>::LeanKernel::none
@@ -234,6 +234,9 @@ namespace tissuefem::solid
               access.entry[(c * n + i) * n + j] = position;
             }
         access.direct[c] = direct;
+        // The lean kernel adds direct cells into the rows as it computes
+        // them and keeps the others' matrices, as it was built.
+        Assert(!lean || lean->keeps_matrix(c) == !direct, ExcInternalError());
       }
     // Cells by ghosted entry, for active regions (cells_touching).
     access.cells_of_begin.assign(ghosts.NumMyElements() + 1, 0);

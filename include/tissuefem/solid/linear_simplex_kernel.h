@@ -145,13 +145,16 @@ namespace tissuefem::solid
     };
 
     /**
-     * Element vectors (and matrices) of every cell, in the kernel's dof
-     * order (node k, component a at k * dim + a). Returns the cells (cache
-     * index, det F) where det F <= 0 for a model that cannot represent it.
-     * With Input::cells and no Jacobian (an active region), only the
-     * selected cells are computed, in batches of selected cells, and the
-     * others' element vectors are left as they were: add selected() only.
-     * With Input::cells and a Jacobian, the others get zeros.
+     * Element vectors of every cell, in the kernel's dof order (node k,
+     * component a at k * dim + a), and with Input::jacobian their matrices:
+     * kept for the cells that are not direct (cell_matrix()), added into
+     * Input::matrix_rows for the direct ones (dropped without). Returns the
+     * cells (cache index, det F) where det F <= 0 for a model that cannot
+     * represent it. With Input::cells and no Jacobian (an active region),
+     * only the selected cells are computed, in batches of selected cells,
+     * and the others' element vectors are left as they were: add
+     * selected() only. With Input::cells and a Jacobian, the others get
+     * zeros (and add nothing to the matrix).
      */
     std::vector<std::pair<unsigned int, double>>
     evaluate(const Input &input);
@@ -174,8 +177,8 @@ namespace tissuefem::solid
     void
     add_direct(double *residual) const;
 
-    /// Bytes held (per-cell data and the last evaluation's element
-    /// vectors and matrices).
+    /// Bytes held (per-cell data, the last evaluation's element vectors
+    /// and the kept matrices of the cells that are not direct).
     std::size_t
     memory_consumption() const;
 
@@ -204,6 +207,14 @@ namespace tissuefem::solid
       const unsigned int k = i / dim, l = j / dim;
       return k <= l ? K[block(k, l) + (i % dim) * dim + j % dim]
                     : K[block(l, k) + (j % dim) * dim + i % dim];
+    }
+
+    /// Whether cached cell @p c keeps its matrix: it is not direct (as
+    /// build() was told).
+    bool
+    keeps_matrix(const unsigned int c) const
+    {
+      return slot[c] >= 0;
     }
 
   private:
@@ -308,7 +319,8 @@ namespace tissuefem::solid
     unsigned int most_points = 1;
     /// Whether the last evaluation's matrices hold the mass only (no
     /// elastic part: the nodal dilatation's), which couples each component
-    /// with itself alone: scatter() then adds a third of the entries.
+    /// with itself alone: scatter() then adds a third of the entries (a half
+    /// in 2D).
     bool mass_only = false;
   };
 } // namespace tissuefem::solid

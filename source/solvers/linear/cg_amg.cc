@@ -77,6 +77,8 @@ namespace tissuefem::solvers::linear
         mode_vectors     = modes;
         this->components = components;
         amg.reset();
+        untried = 1;
+        backoff = 1;
       }
 
       void
@@ -223,7 +225,10 @@ namespace tissuefem::solvers::linear
       const VectorType start(x);
       unsigned int     iterations = cg_solve(A, x, b, tolerance, cap);
       // A failed try with a moved diagonal skips the next 'backoff' tries,
-      // a successful one makes the next failure skip one.
+      // a successful one makes the next failure skip one. A kept hierarchy
+      // is measured against its build's diagonal: after a kept try the
+      // next solves are tries too, and their failures, whatever moved the
+      // matrix, count.
       const bool failed
         = iterations == std::numeric_limits<unsigned int>::max();
       if (trial)
