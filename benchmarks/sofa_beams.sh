@@ -31,19 +31,15 @@ source "$(dirname "$0")/common.sh"
 which=${2:-both}
 quick=${3:-}
 
-run() { # directory, prm, settings...
-  local dir=$1
-  shift
-  "$exe" "$@" --set "Time integration/End time=1" \
-    --set "Output/VTU/Interval=0" --set "Output/Directory=$dir" \
-    > "$dir.log" 2>&1 || { tail -3 "$dir.log" >&2; exit 1; }
-}
-
-run_whole() { # the same as run, to the scene's own end time
+run_whole() { # directory, prm, settings...: to the scene's own end time
   local dir=$1
   shift
   "$exe" "$@" --set "Output/VTU/Interval=0" --set "Output/Directory=$dir" \
     > "$dir.log" 2>&1 || { tail -3 "$dir.log" >&2; exit 1; }
+}
+
+run() { # the same over the first second
+  run_whole "$@" --set "Time integration/End time=1"
 }
 
 run_on_two() { # the same as run, on two MPI processes (one thread each)

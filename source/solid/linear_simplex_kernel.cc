@@ -175,16 +175,12 @@ namespace tissuefem::solid
         for (unsigned int i = 0; i < n_dofs; ++i)
           row_positions[fill[row[c * n_dofs + local_index[i]]]++]
             = c * n_dofs + i;
-    // Direct cells' rows, for their matrices' scatter; the others' matrices
-    // are kept.
-    cell_row.assign(n_cells * n_dofs, -1);
+    // Direct cells' matrices go into the rows (scatter()); the others' are
+    // kept.
     slot.assign(n_cells, -1);
     n_kept = 0;
     for (unsigned int c = 0; c < n_cells; ++c)
-      if (direct[c])
-        for (unsigned int i = 0; i < n_dofs; ++i)
-          cell_row[c * n_dofs + i] = row[c * n_dofs + local_index[i]];
-      else
+      if (!direct[c])
         slot[c] = n_kept++;
     make_phases();
     vectors.assign(n_cells * n_dofs, 0.);
@@ -437,10 +433,11 @@ namespace tissuefem::solid
                                     const Input       &input) const
   {
     const std::uint16_t *entries = input.matrix_entries->data();
+    const int           *rows    = &(*input.matrix_row_of)[c * n_dofs];
     for (unsigned int i = 0; i < n_dofs; ++i)
       {
         const unsigned int k = i / dim, a = i % dim;
-        double *values = (*input.matrix_rows)[cell_row[c * n_dofs + i]];
+        double            *values = (*input.matrix_rows)[rows[local_index[i]]];
         const std::uint16_t *e
           = &entries[(c * n_dofs + local_index[i]) * n_dofs];
         // Row (k, a): of block (k, l) its row a, of block (l, k) (l < k,
@@ -468,7 +465,8 @@ namespace tissuefem::solid
     // A direct cell left out of jacobian_cells would add nothing to the
     // matrix: a Jacobian into the rows is of all cells.
     Assert(!input.jacobian || !input.matrix_rows
-             || (input.matrix_entries && !input.jacobian_cells),
+             || (input.matrix_row_of && input.matrix_entries
+                 && !input.jacobian_cells),
            ExcInternalError());
     if (input.jacobian)
       matrices.resize(n_kept * n_packed);
@@ -651,7 +649,7 @@ namespace tissuefem::solid
            + memory_consumption(ghost) + memory_consumption(local_index)
            + memory_consumption(point_begin) + memory_consumption(point_fibre)
            + memory_consumption(point_weight) + memory_consumption(row_begin)
-           + memory_consumption(row_positions) + memory_consumption(cell_row)
+           + memory_consumption(row_positions)
            + memory_consumption(phase_batches) + memory_consumption(phase_begin)
            + memory_consumption(slot) + memory_consumption(vectors)
            + memory_consumption(matrices);

@@ -65,6 +65,7 @@ namespace tissuefem::solid
     if (request.jacobian)
       {
         input.matrix_rows    = &access.row_values;
+        input.matrix_row_of  = &access.row;
         input.matrix_entries = &access.entry;
       }
     // A lifting residual without the Jacobian (implicit_residual_lifting()

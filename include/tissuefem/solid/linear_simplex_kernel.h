@@ -135,12 +135,14 @@ namespace tissuefem::solid
       /// With jacobian: the cells whose matrices are computed (by cache
       /// index; all if null); the others' are left as they were.
       const std::vector<bool> *jacobian_cells = nullptr;
-      /// With jacobian: the owned rows' values in the Trilinos matrix and
-      /// the positions there of each direct cell's entries, entry (i, j) of
-      /// cell c (element order) of its row at matrix_entries[(c * n + i) *
-      /// n + j]. The direct cells' matrices are added there; without, they
-      /// are dropped (only the others' are kept: cell_matrix()).
+      /// With jacobian: the owned rows' values in the Trilinos matrix, the
+      /// owned row of dof i (element order) of cell c at matrix_row_of[c *
+      /// n + i], and the position there of its entry j at
+      /// matrix_entries[(c * n + i) * n + j]. The direct cells' matrices
+      /// are added there; without, they are dropped (only the others' are
+      /// kept: cell_matrix()).
       const std::vector<double *>      *matrix_rows    = nullptr;
+      const std::vector<int>           *matrix_row_of  = nullptr;
       const std::vector<std::uint16_t> *matrix_entries = nullptr;
     };
 
@@ -304,9 +306,6 @@ namespace tissuefem::solid
     /// landing there, [row_begin[r], row_begin[r + 1]).
     std::vector<unsigned int> row_begin;
     std::vector<unsigned int> row_positions;
-    /// Per direct cell: the owned row of each dof [c * n_dofs + i] (kernel
-    /// order).
-    std::vector<int> cell_row;
     /// Batches by phase: phase p is phase_batches[phase_begin[p],
     /// phase_begin[p + 1]) (indices into batches).
     std::vector<unsigned int> phase_batches, phase_begin;
