@@ -356,16 +356,16 @@ namespace tissuefem::solid
 
 
   template <int dim>
-  forces::Augmentation
+  Augmentation
   Solid<dim>::augment(const VectorType  &u,
                       const double       time,
                       const unsigned int update,
                       std::string       &message)
   {
     if (contributions.empty())
-      return forces::Augmentation::satisfied;
+      return Augmentation::satisfied;
     make_ghosted(u, ghosted_u);
-    auto       result = forces::Augmentation::satisfied;
+    auto       result = Augmentation::satisfied;
     const auto start  = std::chrono::steady_clock::now();
     // Counted on every way out.
     struct Clock
@@ -383,12 +383,12 @@ namespace tissuefem::solid
       {
         std::string why;
         const auto status = contribution->augment(ghosted_u, time, update, why);
-        if (status == forces::Augmentation::failed)
+        if (status == Augmentation::failed)
           {
             message = why;
             return status;
           }
-        if (status == forces::Augmentation::again)
+        if (status == Augmentation::again)
           result = status;
       }
     return result;

@@ -290,9 +290,9 @@ namespace tissuefem::time
       {
         std::string why;
         const auto  status = solid.augment(next.u, t_new, update, why);
-        if (status == forces::Augmentation::satisfied)
+        if (status == solid::Augmentation::satisfied)
           break;
-        if (status == forces::Augmentation::failed)
+        if (status == solid::Augmentation::failed)
           return why;
         result = newton(false);
         count(result);

@@ -8,7 +8,6 @@
 #include <tissuefem/contact/coulomb.h>
 #include <tissuefem/contact/face_tree.h>
 #include <tissuefem/contact/obstacle.h>
-#include <tissuefem/forces/interface.h>
 #include <tissuefem/forces/registry.h>
 #include <tissuefem/solid/discretization.h>
 

@@ -3,7 +3,6 @@
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/full_matrix.h>
 
-#include <tissuefem/forces/interface.h>
 #include <tissuefem/forces/registry.h>
 #include <tissuefem/solid/discretization.h>
 

@@ -3,9 +3,9 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <tissuefem/base/registry.h>
-#include <tissuefem/forces/interface.h>
 #include <tissuefem/materials/material_set.h>
 #include <tissuefem/solid/discretization.h>
+#include <tissuefem/solid/force_contribution.h>
 #include <tissuefem/time/interface.h>
 
 #include <memory>
@@ -15,6 +15,18 @@
 namespace tissuefem::forces
 {
   using Capabilities = time::Interface::Capabilities;
+
+  /**
+   * What every force contribution derives from. The solid holds its
+   * contributions and calls them in its assembly, so the interface is the
+   * solid's (solid/force_contribution.h); this folder holds how they are
+   * registered and created from a parameter file, which needs the solid
+   * and the integrators. The dependencies run one way: forces and contact
+   * on solid and time, never back.
+   */
+  template <int dim>
+  using Interface    = solid::ForceContribution<dim>;
+  using Augmentation = solid::Augmentation;
 
   /**
    * What a force contribution may read when the scene creates it, besides

@@ -3,7 +3,7 @@
 #include <deal.II/base/index_set.h>
 
 #include <tissuefem/base/parallel.h>
-#include <tissuefem/forces/interface.h>
+#include <tissuefem/solid/force_contribution.h>
 #include <tissuefem/solid/iteration_unknowns.h>
 #include <tissuefem/solvers/linear_solver.h>
 
@@ -349,10 +349,10 @@ namespace tissuefem::solid
      * After an implicit step's Newton solve has converged at @p u (at
      * @p time, the @p update-th time in this step, from 0): the force
      * contributions with multipliers (an augmented-Lagrangian contact)
-     * update them (forces::Interface::augment()). Returns the least
+     * update them (ForceContribution::augment()). Returns the least
      * settled answer of them: failed before again before satisfied.
      */
-    virtual forces::Augmentation
+    virtual Augmentation
     augment(const VectorType  &u,
             const double       time,
             const unsigned int update,
@@ -362,7 +362,7 @@ namespace tissuefem::solid
       (void)time;
       (void)update;
       (void)message;
-      return forces::Augmentation::satisfied;
+      return Augmentation::satisfied;
     }
 
     /// Unknowns Newton must update alongside u (the three-field mean

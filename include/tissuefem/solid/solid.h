@@ -4,13 +4,13 @@
 
 #include <tissuefem/base/input_error.h>
 #include <tissuefem/boundary/boundary_conditions.h>
-#include <tissuefem/forces/interface.h>
 #include <tissuefem/materials/material_set.h>
 #include <tissuefem/solid/cell_cache.h>
 #include <tissuefem/solid/change_signals.h>
 #include <tissuefem/solid/dilatation_carry.h>
 #include <tissuefem/solid/discretization.h>
 #include <tissuefem/solid/fibre_field.h>
+#include <tissuefem/solid/force_contribution.h>
 #include <tissuefem/solid/formulations/interface.h>
 #include <tissuefem/solid/linear_simplex_kernel.h>
 #include <tissuefem/solid/operators.h>
@@ -66,13 +66,13 @@ namespace tissuefem::solid
     ChangeSignals signals;
 
     /**
-     * Adds @p contribution (forces/interface.h) to every residual,
+     * Adds @p contribution (force_contribution.h) to every residual,
      * Jacobian and implicit energy this solid assembles from now on: its
      * dE/du and d2E/du2 wherever the elements' internal forces are
      * assembled, its E in implicit_energy().
      */
     void
-    add_force_contribution(std::shared_ptr<forces::Interface<dim>> contribution)
+    add_force_contribution(std::shared_ptr<ForceContribution<dim>> contribution)
     {
       contributions.push_back(std::move(contribution));
     }
@@ -307,7 +307,7 @@ namespace tissuefem::solid
     void
     accept_step(const VectorType &u, const double time) override;
 
-    forces::Augmentation
+    Augmentation
     augment(const VectorType  &u,
             const double       time,
             const unsigned int update,
@@ -548,7 +548,7 @@ namespace tissuefem::solid
     /// Ghosted copies of the arguments, reused between calls.
     VectorType ghosted_u, ghosted_w;
     /// Forces that do not come from the elements (add_force_contribution).
-    std::vector<std::shared_ptr<forces::Interface<dim>>> contributions;
+    std::vector<std::shared_ptr<ForceContribution<dim>>> contributions;
     /// Wall time spent in them so far (contribution_seconds()).
     double contribution_time = 0;
 

@@ -6,11 +6,12 @@
 
 #include <string>
 
-namespace tissuefem::forces
+namespace tissuefem::solid
 {
   using namespace dealii;
 
-  /// What a contribution's multiplier update found (Interface::augment()).
+  /// What a contribution's multiplier update found
+  /// (ForceContribution::augment()).
   enum class Augmentation
   {
     /// Its constraints hold to their tolerance: the step is done.
@@ -37,10 +38,10 @@ namespace tissuefem::forces
    * discretization at each call, so that mesh changes need no signal.
    */
   template <int dim>
-  class Interface
+  class ForceContribution
   {
   public:
-    virtual ~Interface() = default;
+    virtual ~ForceContribution() = default;
 
     /**
      * Adds dE/du at (@p u, @p time) to @p residual and, with @p jacobian,
@@ -130,4 +131,4 @@ namespace tissuefem::forces
       return false;
     }
   };
-} // namespace tissuefem::forces
+} // namespace tissuefem::solid
