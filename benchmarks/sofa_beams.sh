@@ -13,10 +13,12 @@
 # included), the simulated time per wall-clock second of the whole run,
 # and the tip error: the largest distance over t in [0, 1] between the
 # tip's displacement (probe 1, the centre of the free end) and the
-# reference's, relative to the reference's largest tip displacement (%).
+# reference's, relative to the reference's largest tip displacement (%);
+# the peak resident memory summed over the processes per tetrahedron (kB).
 # Targets: per step at most 20 ms (small) and 60 ms (large), twice SOFA's
 # reported CPU frame rates (23.5 and 8 frames per second); stretch 10 and
-# 33 ms; tip error within 1 %.
+# 33 ms (and /stretch, the median over it); tip error within 1 %; memory
+# at most 2 kB per tetrahedron on the large beam.
 #
 # Beside them, the scene over its whole 2 s (the large beam's second
 # second rests on the floor, with contact at every step): its step times
@@ -80,23 +82,26 @@ row() { # label, directory, reference directory, target ms
   median=$(value "$dir" "step median")
   p95=$(value "$dir" "step p95")
   total=$(value "$dir" "wall total")
-  printf '%-44s %9.1f %9.1f %8.1f %9.3f %9s %9s\n' "$1" \
+  printf '%-44s %9.1f %9.1f %8.1f %9.3f %9s %9s %9s %7.2f\n' "$1" \
     "$(echo "1000 * $median" | bc -l)" "$(echo "1000 * $p95" | bc -l)" \
     "$total" "$(echo "$(value "$dir" "simulated time") / $total" | bc -l)" \
     "$(tip_error "$dir" "$3")" \
-    "$(echo "1000 * $median / $4" | bc -l | xargs printf '%.2f')"
+    "$(echo "1000 * $median / $4" | bc -l | xargs printf '%.2f')" \
+    "$(echo "1000 * $median / $5" | bc -l | xargs printf '%.2f')" \
+    "$(echo "1000 * $(value "$dir" "peak memory") / $(value "$dir" cells)" | bc -l)"
 }
 
-header() {
-  printf '\n%s (target %s ms per step, tip error 1 %%)\n' "$1" "$2"
-  printf '%-44s %9s %9s %8s %9s %9s %9s\n' run "median ms" "p95 ms" "run s" \
-    "sim/wall" "tip err %" "/target"
+header() { # beam, target, stretch
+  printf '\n%s (target %s ms per step, stretch %s ms; tip error 1 %%; memory 2 kB per tet at 101k)\n' "$1" "$2" "$3"
+  printf '%-44s %9s %9s %8s %9s %9s %9s %9s %7s\n' run "median ms" "p95 ms" "run s" \
+    "sim/wall" "tip err %" "/target" "/stretch" "kB/tet"
 }
 
 for beam in small large; do
   [ "$which" = both ] || [ "$which" = "$beam" ] || continue
   prm="$top/parameters/sofa/beam_$beam.prm"
   target=$([ $beam = small ] && echo 20 || echo 60)
+  stretch=$([ $beam = small ] && echo 10 || echo 33)
   run "$beam-reference" "$prm" --set "Time integration/Integrator=backward Euler" \
     --set "Linear solver/Type=MUMPS"
   run "$beam-scene" "$prm"
@@ -114,18 +119,18 @@ for beam in small large; do
     run "$beam-qn-cg" "$prm" --set "Time integration/Integrator=quasi-Newton backward Euler" \
       --set "Linear solver/Type=cg amg" --set "Linear solver/Relative tolerance=1e-6"
   fi
-  header "$beam beam" "$target"
-  row "converged backward Euler (MUMPS)" "$beam-reference" "$beam-reference" "$target"
-  row "the scene's settings" "$beam-scene" "$beam-reference" "$target"
-  row "the scene over its whole 2 s" "$beam-whole" "$beam-reference" "$target"
-  row "the scene on 2 processes (**)" "$beam-two" "$beam-reference" "$target"
-  row "the scene, consistent mass (*)" "$beam-consistent" "$beam-reference" "$target"
-  row "linearly implicit Euler, MUMPS" "$beam-lu" "$beam-reference" "$target"
-  row "linearly implicit Euler, cg amg to 1e-10" "$beam-cg-exact" "$beam-reference" "$target"
-  row "linearly implicit Euler, cg amg to 1e-3" "$beam-cg-tighter" "$beam-reference" "$target"
+  header "$beam beam" "$target" "$stretch"
+  row "converged backward Euler (MUMPS)" "$beam-reference" "$beam-reference" "$target" "$stretch"
+  row "the scene's settings" "$beam-scene" "$beam-reference" "$target" "$stretch"
+  row "the scene over its whole 2 s" "$beam-whole" "$beam-reference" "$target" "$stretch"
+  row "the scene on 2 processes (**)" "$beam-two" "$beam-reference" "$target" "$stretch"
+  row "the scene, consistent mass (*)" "$beam-consistent" "$beam-reference" "$target" "$stretch"
+  row "linearly implicit Euler, MUMPS" "$beam-lu" "$beam-reference" "$target" "$stretch"
+  row "linearly implicit Euler, cg amg to 1e-10" "$beam-cg-exact" "$beam-reference" "$target" "$stretch"
+  row "linearly implicit Euler, cg amg to 1e-3" "$beam-cg-tighter" "$beam-reference" "$target" "$stretch"
   if [ "$quick" != quick ]; then
-    row "quasi-Newton backward Euler, MUMPS" "$beam-qn-lu" "$beam-reference" "$target"
-    row "quasi-Newton backward Euler, cg amg to 1e-6" "$beam-qn-cg" "$beam-reference" "$target"
+    row "quasi-Newton backward Euler, MUMPS" "$beam-qn-lu" "$beam-reference" "$target" "$stretch"
+    row "quasi-Newton backward Euler, cg amg to 1e-6" "$beam-qn-cg" "$beam-reference" "$target" "$stretch"
   fi
 done
 echo

@@ -52,7 +52,11 @@ namespace tissuefem::problems
     materials::MaterialParameters material_parameters;
     std::string                   hexahedra, tetrahedra, mesh_file;
     unsigned int                  repetitions;
-    double                        target_ms = 0;
+    /// The targets the report measures against (0: none).
+    struct Targets
+    {
+      double update_ms = 0, tangent_us = 0, floor_ratio = 0;
+    } targets;
 
     /// A generated box of @p cell_type with @p subdivisions.
     void
@@ -103,6 +107,23 @@ namespace tissuefem::problems
                       "8x margin); with > 0, each mesh's report ends with "
                       "the measured time per update and its ratio to this. "
                       "0: no target.");
+    prm.declare_entry("Forces with tangent target",
+                      "0",
+                      Patterns::Double(0),
+                      "Wall-clock microseconds per cell the lean kernel's "
+                      "forces with tangent (residual and Jacobian, added "
+                      "into the matrix) should take with all threads (issue "
+                      "32: 0.2 on two threads); with > 0 the report prints "
+                      "the measured time against it. 0: no target.");
+    prm.declare_entry("Floor ratio target",
+                      "0",
+                      Patterns::Double(0),
+                      "The largest ratio of tissuefem's internal-force time "
+                      "(residual only) to the true floor's (issue 32: 1.2); "
+                      "with > 0 and a true floor in the table (neo-Hookean "
+                      "on linear simplices, one process) the report prints "
+                      "the measured ratios, on one thread and on all, "
+                      "against it. 0: no target.");
     prm.declare_entry("Repetitions",
                       "3",
                       Patterns::Integer(1, 100),
@@ -118,11 +139,13 @@ namespace tissuefem::problems
   {
     material_parameters.parse_parameters(prm);
     prm.enter_subsection("Assembly benchmark");
-    hexahedra   = prm.get("Hexahedra subdivisions");
-    tetrahedra  = prm.get("Simplex subdivisions");
-    repetitions = prm.get_integer("Repetitions");
-    mesh_file   = Utilities::trim(prm.get("Mesh file"));
-    target_ms   = prm.get_double("Force update target");
+    hexahedra           = prm.get("Hexahedra subdivisions");
+    tetrahedra          = prm.get("Simplex subdivisions");
+    repetitions         = prm.get_integer("Repetitions");
+    mesh_file           = Utilities::trim(prm.get("Mesh file"));
+    targets.update_ms   = prm.get_double("Force update target");
+    targets.tangent_us  = prm.get_double("Forces with tangent target");
+    targets.floor_ratio = prm.get_double("Floor ratio target");
     prm.leave_subsection();
     // Relative to the parameter file (which may be in the working
     // directory: then the parameter directory is empty).
@@ -362,6 +385,40 @@ namespace tissuefem::problems
                  << std::setprecision(6) << "\n";
         }
     }
+
+    /// The kernel targets after the table: the forces with tangent per
+    /// cell with all threads, and (with a true floor, the first row) the
+    /// forces' ratio to the floor on one thread and on all.
+    void
+    print_targets(const std::vector<FloorRow> &rows,
+                  const bool                   has_floor,
+                  const unsigned int           all_threads,
+                  const std::size_t            all_thread_row,
+                  const double                 tangent_us,
+                  const double                 floor_ratio)
+    {
+      auto &screen = parallel_tools::screen();
+      screen << std::setprecision(3);
+      if (tangent_us > 0)
+        screen << "Forces with tangent, added into the matrix, " << all_threads
+               << " thread(s): " << rows[all_thread_row].jacobian
+               << " us per cell; target " << tangent_us
+               << " us: measured / target = "
+               << rows[all_thread_row].jacobian / tangent_us << "\n";
+      if (floor_ratio > 0 && has_floor)
+        {
+          // The one-thread row of tissuefem comes right after the floor
+          // and the quadrature-loop kernel.
+          const double one = rows[2].residual / rows[0].residual;
+          const double all = rows[all_thread_row].residual / rows[0].residual;
+          screen << "Forces against the true floor (time ratio): " << one
+                 << " on 1 thread, " << all << " on " << all_threads
+                 << " thread(s); target " << floor_ratio
+                 << ": measured / target = " << one / floor_ratio << " and "
+                 << all / floor_ratio << "\n";
+        }
+      screen << std::setprecision(6);
+    }
   } // namespace
 
 
@@ -465,7 +522,13 @@ namespace tissuefem::problems
                       n_cells,
                       all_threads,
                       all_thread_row,
-                      target_ms);
+                      targets.update_ms);
+    print_targets(rows,
+                  floor_difference >= 0,
+                  all_threads,
+                  all_thread_row,
+                  targets.tangent_us,
+                  targets.floor_ratio);
   }
 
 

@@ -49,6 +49,7 @@ namespace tissuefem::solvers::linear
         max_iterations     = prm.get_integer("Maximum iterations");
         rebuild_factor     = prm.get_double("AMG rebuild factor");
         diagonal_change    = prm.get_double("AMG diagonal change");
+        coarse_size        = prm.get_integer("AMG coarse size");
         prm.leave_subsection();
         require(relative_tolerance > 0,
                 "Linear solver/Relative tolerance",
@@ -123,6 +124,7 @@ namespace tissuefem::solvers::linear
       unsigned int max_iterations;
       double       rebuild_factor;
       double       diagonal_change;
+      unsigned int coarse_size;
 
       std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg;
       std::unique_ptr<Epetra_MultiVector>                modes;
@@ -190,6 +192,19 @@ namespace tissuefem::solvers::linear
         "Without contact the diagonal drifts by at most 1.17 over 20 steps. "
         "Changes of the whole matrix are left to 'AMG rebuild factor'. "
         "Values above 1e300 turn the test off (every solve tries first).");
+      prm.declare_entry(
+        "AMG coarse size",
+        "500",
+        Patterns::Integer(1, 100000),
+        "For 'cg amg': ML coarsens until a level has at most this many "
+        "unknowns, and solves that level directly (KLU). With the six "
+        "rigid-body modes each aggregate keeps six unknowns, so a coarse "
+        "level is nearly dense (some 170 entries a row): deal.II's 2000 "
+        "left a 1,362-unknown level on a 24,576-tetrahedra cube whose KLU "
+        "factorization took 79 ms of a 140 ms build; with 500 (one more "
+        "level) the quasistatic Newton solves of benchmarks/peer_fenics.py "
+        "took 0.55 s instead of 0.77 s, the same CG iterations within 2 %, "
+        "and SOFA's beams the same time (doc/studies.md, AMG coarse size).");
       prm.leave_subsection();
     }
 
@@ -267,6 +282,7 @@ namespace tissuefem::solvers::linear
       Teuchos::ParameterList              list;
       std::unique_ptr<Epetra_MultiVector> unused;
       data.set_parameters(list, unused, A.trilinos_matrix());
+      list.set("coarse: max size", static_cast<int>(coarse_size));
       if (!mode_vectors.empty())
         {
           const auto &map = mode_vectors[0].trilinos_vector().Map();
