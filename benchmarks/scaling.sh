@@ -3,13 +3,17 @@
 # 32): SOFA's small benchmark beam (parameters/sofa/beam_small.prm:
 # corotational elasticity, gravity, Rayleigh damping 0.1/0.1, dt 0.01)
 # meshed as 4m x m x m boxes of 6 tetrahedra each (24 m^3 tets, m = 4 to
-# 25: 1,536 to 375,000 tets), for the linearly implicit Euler, backward
+# 26: 1,536 to 421,824 tets), for the linearly implicit Euler, backward
 # Euler and the quasi-Newton backward Euler, each with MUMPS and with CG +
 # AMG (MUMPS up to 65,856 tets: beyond, backward Euler's factorizations
-# take minutes a step), on 1 thread, 2 threads and 2 MPI processes of 1
-# thread.
+# take minutes a step), and for the damped central difference (explicit, no
+# linear solver: solver 'none'; without the scene's Rayleigh damping, which
+# only the implicit integrators take, at dt = 1e-4 s, below the critical
+# step of the finest mesh), on 1 thread, 2 threads and 2 MPI processes of
+# 1 thread.
 #
-# Each run takes 'steps' steps (default 4) from rest. Per run, in the CSV:
+# Each implicit run takes 'steps' steps (default 4) from rest, each explicit
+# run 20 steps. Per run, in the CSV:
 #   tets, integrator, solver, config (t1, t2, np2),
 #   step_median_ms    median wall time of the integrator's step,
 #   step_p95_ms       its 95th percentile (the largest of few steps),
@@ -22,17 +26,19 @@
 #   wall_total_s      the whole run (mesh, set-up, steps, output),
 #   peak_kB_per_tet   peak resident memory over all processes / tets.
 # Charts (gnuplot, if installed): scaling_step.png (median step against tets,
-# log-log, every run) and scaling_split.png (assembly and solve per step
-# against tets, linearly implicit Euler with CG + AMG on 2 threads).
+# log-log, every run) and scaling_split.png (where the step goes on 2
+# threads: step, assembly, linear solve and the set-up within it, per step,
+# for the linearly implicit Euler and backward Euler with CG + AMG and
+# backward Euler with MUMPS).
 #
-# Usage (from the repository top, after building; 30-40 minutes for all):
+# Usage (from the repository top, after building; about 45 minutes for all):
 #   bash benchmarks/scaling.sh [path/to/tissuefem] [output directory]
-#     [largest m (default 25)] [steps (default 4)]
+#     [largest m (default 26)] [steps (default 4)]
 # doc/figures/scaling.csv and the two charts there were made so.
 set -euo pipefail
 exe=$(realpath "${1:-build/tissuefem}")
 out=$(realpath -m "${2:-doc/figures}")
-largest=${3:-25}
+largest=${3:-26}
 steps=${4:-4}
 top=$(realpath "$(dirname "$0")/..")
 mkdir -p "$out"
@@ -68,12 +74,22 @@ print(",".join([tets, integrator, solver, config,
 PY
 }
 
-for m in 4 6 8 11 14 18 22 25; do
+for m in 4 6 8 11 14 18 22 26; do
   [ "$m" -le "$largest" ] || continue
   tets=$((24 * m * m * m))
-  for integrator in "linearly implicit Euler" "backward Euler" "quasi-Newton backward Euler"; do
+  for integrator in "linearly implicit Euler" "backward Euler" \
+    "quasi-Newton backward Euler" "damped central difference"; do
+    explicit=$([ "$integrator" = "damped central difference" ] && echo 1 || echo 0)
     for solver in "cg amg" MUMPS; do
       [ "$solver" = MUMPS ] && [ "$tets" -gt 70000 ] && continue
+      [ "$explicit" = 1 ] && [ "$solver" = MUMPS ] && continue
+      time=(--set "Time integration/End time=$(echo "0.01 * $steps" | bc -l)"
+        --set "Linear solver/Type=$solver")
+      [ "$explicit" = 1 ] && time=(--set "Time integration/Time step=1e-4"
+        --set "Time integration/End time=2e-3"
+        --set "Time integration/Rayleigh mass damping=0"
+        --set "Time integration/Rayleigh stiffness damping=0")
+      label=$([ "$explicit" = 1 ] && echo none || echo "$solver")
       for config in t1 t2 np2; do
         dir="$work/run"
         rm -rf "$dir"
@@ -82,16 +98,14 @@ for m in 4 6 8 11 14 18 22 25; do
         [ "$config" = np2 ] && launch=(mpirun --oversubscribe -np 2 "$exe" --threads 1)
         if ! "${launch[@]}" "$top/parameters/sofa/beam_small.prm" \
           --set "Geometry/Subdivisions=$((4 * m)), $m, $m" \
-          --set "Time integration/Integrator=$integrator" \
-          --set "Time integration/End time=$(echo "0.01 * $steps" | bc -l)" \
-          --set "Linear solver/Type=$solver" \
+          --set "Time integration/Integrator=$integrator" "${time[@]}" \
           --set "Output/VTU/Interval=0" --set "Output/Directory=$dir" \
           > "$work/log" 2>&1; then
-          echo "scaling.sh: $tets tets, $integrator, $solver, $config failed:" >&2
+          echo "scaling.sh: $tets tets, $integrator, $label, $config failed:" >&2
           tail -3 "$work/log" >&2
           continue
         fi
-        summarize "$dir" "$work/log" "$tets" "$integrator" "$solver" "$config" | tee -a "$csv"
+        summarize "$dir" "$work/log" "$tets" "$integrator" "$label" "$config" | tee -a "$csv"
       done
     done
   done
@@ -126,15 +140,22 @@ set xlabel 'tetrahedra'
 set ylabel 'wall time per step (ms, median)'
 set title "SOFA's beam, 4m x m x m boxes of 6 tets: step time against size (2 cores)"
 set output '$out/scaling_step.png'
-plot for [i=0:17] '$work/curves.txt' index i using 1:2 with linespoints title columnheader(1), \
+plot for [i=0:20] '$work/curves.txt' index i using 1:2 with linespoints title columnheader(1), \
   33.3 with lines dt 2 lc rgb 'black' title 'visual frame, 1/30 s'
-set title 'linearly implicit Euler, CG + AMG, 2 threads: where the step goes'
-set ylabel 'wall time per step (ms, median)'
+set terminal pngcairo size 1500,520 font ',10'
 set output '$out/scaling_split.png'
 set datafile separator ','
 set key inside left top
-plot '< grep "linearly implicit Euler,cg amg,t2" $csv' using 1:5 with linespoints title 'step', \
-     '' using 1:7 with linespoints title 'assembly', \
-     '' using 1:8 with linespoints title 'linear solve'
+set ylabel 'wall time per step (ms; set-up: its share of the run, per step)'
+set multiplot layout 1,3 title "Where the step goes, 2 threads (set-up: AMG builds or symbolic factorizations, within the linear solve)"
+do for [run in "linearly@implicit@Euler,cg@amg backward@Euler,cg@amg backward@Euler,MUMPS"] {
+  name = system("echo '" . run . "' | tr @ ' '")
+  set title system("echo '" . name . "' | sed 's/,/, /'")
+  plot '< grep "^[0-9]*,' . name . ',t2" $csv' using 1:5 with linespoints title 'step', \
+       '' using 1:7 with linespoints title 'assembly', \
+       '' using 1:8 with linespoints title 'linear solve', \
+       '' using 1:(\$9 * 1000 / $steps) with linespoints title 'set-up'
+}
+unset multiplot
 GP
 echo "wrote $csv, $out/scaling_step.png, $out/scaling_split.png"
