@@ -77,8 +77,9 @@ namespace tissuefem::solid
     void
     initialize_vector(VectorType &v, const bool ghosted = false) const;
 
-    /// A vector into which cell contributions to rows owned elsewhere may
-    /// be added (call compress(VectorOperation::add) afterwards).
+    /// A vector into which cell contributions to any row, also rows owned
+    /// elsewhere, may be added (call compress(VectorOperation::add)
+    /// afterwards).
     void
     initialize_assembly_vector(VectorType &v) const;
 
