@@ -83,9 +83,9 @@ for m in 4 6 8 11 14 18 22 26; do
     for solver in "cg amg" MUMPS; do
       [ "$solver" = MUMPS ] && [ "$tets" -gt 70000 ] && continue
       [ "$explicit" = 1 ] && [ "$solver" = MUMPS ] && continue
-      time=(--set "Time integration/End time=$(echo "0.01 * $steps" | bc -l)"
+      settings=(--set "Time integration/End time=$(echo "0.01 * $steps" | bc -l)"
         --set "Linear solver/Type=$solver")
-      [ "$explicit" = 1 ] && time=(--set "Time integration/Time step=1e-4"
+      [ "$explicit" = 1 ] && settings=(--set "Time integration/Time step=1e-4"
         --set "Time integration/End time=2e-3"
         --set "Time integration/Rayleigh mass damping=0"
         --set "Time integration/Rayleigh stiffness damping=0")
@@ -98,7 +98,7 @@ for m in 4 6 8 11 14 18 22 26; do
         [ "$config" = np2 ] && launch=(mpirun --oversubscribe -np 2 "$exe" --threads 1)
         if ! "${launch[@]}" "$top/parameters/sofa/beam_small.prm" \
           --set "Geometry/Subdivisions=$((4 * m)), $m, $m" \
-          --set "Time integration/Integrator=$integrator" "${time[@]}" \
+          --set "Time integration/Integrator=$integrator" "${settings[@]}" \
           --set "Output/VTU/Interval=0" --set "Output/Directory=$dir" \
           > "$work/log" 2>&1; then
           echo "scaling.sh: $tets tets, $integrator, $label, $config failed:" >&2
@@ -115,6 +115,17 @@ if ! command -v gnuplot > /dev/null 2>&1; then
   echo "scaling.sh: gnuplot not found, no charts" >&2
   exit 0
 fi
+# The split chart's panels: integrator and solver as the CSV names them.
+panels=""
+for run in "linearly implicit Euler,cg amg" "backward Euler,cg amg" \
+  "backward Euler,MUMPS"; do
+  panels+="set title '${run/,/, }'
+plot '< grep \"^[0-9]*,$run,t2,\" $csv' using 1:5 with linespoints title 'step', \\
+  '' using 1:7 with linespoints title 'assembly', \\
+  '' using 1:8 with linespoints title 'linear solve', \\
+  '' using 1:(\$9 * 1000 / $steps) with linespoints title 'set-up'
+"
+done
 # One data file per curve, for gnuplot.
 /usr/bin/python3 - "$csv" "$work" <<'PY'
 import csv, sys
@@ -148,14 +159,7 @@ set datafile separator ','
 set key inside left top
 set ylabel 'wall time per step (ms; set-up: its share of the run, per step)'
 set multiplot layout 1,3 title "Where the step goes, 2 threads (set-up: AMG builds or symbolic factorizations, within the linear solve)"
-do for [run in "linearly@implicit@Euler,cg@amg backward@Euler,cg@amg backward@Euler,MUMPS"] {
-  name = system("echo '" . run . "' | tr @ ' '")
-  set title system("echo '" . name . "' | sed 's/,/, /'")
-  plot '< grep "^[0-9]*,' . name . ',t2" $csv' using 1:5 with linespoints title 'step', \
-       '' using 1:7 with linespoints title 'assembly', \
-       '' using 1:8 with linespoints title 'linear solve', \
-       '' using 1:(\$9 * 1000 / $steps) with linespoints title 'set-up'
-}
+$panels
 unset multiplot
 GP
 echo "wrote $csv, $out/scaling_step.png, $out/scaling_split.png"

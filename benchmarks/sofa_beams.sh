@@ -76,7 +76,7 @@ print("%.3f" % (100 * max(math.dist(u, reference(t)) for t, u in run) / scale))
 EOF
 }
 
-row() { # label, directory, reference directory, target ms
+row() { # label, directory: against the beam's $reference, $target, $stretch
   local dir=$2
   local median p95 total
   median=$(value "$dir" "step median")
@@ -85,14 +85,14 @@ row() { # label, directory, reference directory, target ms
   printf '%-44s %9.1f %9.1f %8.1f %9.3f %9s %9s %9s %7.2f\n' "$1" \
     "$(echo "1000 * $median" | bc -l)" "$(echo "1000 * $p95" | bc -l)" \
     "$total" "$(echo "$(value "$dir" "simulated time") / $total" | bc -l)" \
-    "$(tip_error "$dir" "$3")" \
-    "$(echo "1000 * $median / $4" | bc -l | xargs printf '%.2f')" \
-    "$(echo "1000 * $median / $5" | bc -l | xargs printf '%.2f')" \
+    "$(tip_error "$dir" "$reference")" \
+    "$(echo "1000 * $median / $target" | bc -l | xargs printf '%.2f')" \
+    "$(echo "1000 * $median / $stretch" | bc -l | xargs printf '%.2f')" \
     "$(echo "1000 * $(value "$dir" "peak memory") / $(value "$dir" cells)" | bc -l)"
 }
 
-header() { # beam, target, stretch
-  printf '\n%s (target %s ms per step, stretch %s ms; tip error 1 %%; memory 2 kB per tet at 101k)\n' "$1" "$2" "$3"
+header() { # beam
+  printf '\n%s (target %s ms per step, stretch %s ms; tip error 1 %%; memory 2 kB per tet at 101k)\n' "$1" "$target" "$stretch"
   printf '%-44s %9s %9s %8s %9s %9s %9s %9s %7s\n' run "median ms" "p95 ms" "run s" \
     "sim/wall" "tip err %" "/target" "/stretch" "kB/tet"
 }
@@ -102,6 +102,7 @@ for beam in small large; do
   prm="$top/parameters/sofa/beam_$beam.prm"
   target=$([ $beam = small ] && echo 20 || echo 60)
   stretch=$([ $beam = small ] && echo 10 || echo 33)
+  reference=$beam-reference
   run "$beam-reference" "$prm" --set "Time integration/Integrator=backward Euler" \
     --set "Linear solver/Type=MUMPS"
   run "$beam-scene" "$prm"
@@ -119,18 +120,18 @@ for beam in small large; do
     run "$beam-qn-cg" "$prm" --set "Time integration/Integrator=quasi-Newton backward Euler" \
       --set "Linear solver/Type=cg amg" --set "Linear solver/Relative tolerance=1e-6"
   fi
-  header "$beam beam" "$target" "$stretch"
-  row "converged backward Euler (MUMPS)" "$beam-reference" "$beam-reference" "$target" "$stretch"
-  row "the scene's settings" "$beam-scene" "$beam-reference" "$target" "$stretch"
-  row "the scene over its whole 2 s" "$beam-whole" "$beam-reference" "$target" "$stretch"
-  row "the scene on 2 processes (**)" "$beam-two" "$beam-reference" "$target" "$stretch"
-  row "the scene, consistent mass (*)" "$beam-consistent" "$beam-reference" "$target" "$stretch"
-  row "linearly implicit Euler, MUMPS" "$beam-lu" "$beam-reference" "$target" "$stretch"
-  row "linearly implicit Euler, cg amg to 1e-10" "$beam-cg-exact" "$beam-reference" "$target" "$stretch"
-  row "linearly implicit Euler, cg amg to 1e-3" "$beam-cg-tighter" "$beam-reference" "$target" "$stretch"
+  header "$beam beam"
+  row "converged backward Euler (MUMPS)" "$beam-reference"
+  row "the scene's settings" "$beam-scene"
+  row "the scene over its whole 2 s" "$beam-whole"
+  row "the scene on 2 processes (**)" "$beam-two"
+  row "the scene, consistent mass (*)" "$beam-consistent"
+  row "linearly implicit Euler, MUMPS" "$beam-lu"
+  row "linearly implicit Euler, cg amg to 1e-10" "$beam-cg-exact"
+  row "linearly implicit Euler, cg amg to 1e-3" "$beam-cg-tighter"
   if [ "$quick" != quick ]; then
-    row "quasi-Newton backward Euler, MUMPS" "$beam-qn-lu" "$beam-reference" "$target" "$stretch"
-    row "quasi-Newton backward Euler, cg amg to 1e-6" "$beam-qn-cg" "$beam-reference" "$target" "$stretch"
+    row "quasi-Newton backward Euler, MUMPS" "$beam-qn-lu"
+    row "quasi-Newton backward Euler, cg amg to 1e-6" "$beam-qn-cg"
   fi
 done
 echo

@@ -388,11 +388,13 @@ namespace tissuefem::problems
 
     /// The kernel targets after the table: the forces with tangent per
     /// cell with all threads, and (with a true floor, the first row) the
-    /// forces' ratio to the floor on one thread and on all.
+    /// forces' ratio to the floor on one thread and on all; tissuefem's
+    /// rows are @p one_thread_row and @p all_thread_row.
     void
     print_targets(const std::vector<FloorRow> &rows,
                   const bool                   has_floor,
                   const unsigned int           all_threads,
+                  const std::size_t            one_thread_row,
                   const std::size_t            all_thread_row,
                   const double                 tangent_us,
                   const double                 floor_ratio)
@@ -407,9 +409,7 @@ namespace tissuefem::problems
                << rows[all_thread_row].jacobian / tangent_us << "\n";
       if (floor_ratio > 0 && has_floor)
         {
-          // The one-thread row of tissuefem comes right after the floor
-          // and the quadrature-loop kernel.
-          const double one = rows[2].residual / rows[0].residual;
+          const double one = rows[one_thread_row].residual / rows[0].residual;
           const double all = rows[all_thread_row].residual / rows[0].residual;
           screen << "Forces against the true floor (time ratio): " << one
                  << " on 1 thread, " << all << " on " << all_threads
@@ -473,6 +473,7 @@ namespace tissuefem::problems
     rows.push_back({"quadrature-loop kernel (1 thread)",
                     time([&] { floor.assemble(u_all, false); }),
                     time([&] { floor.assemble(u_all, true); })});
+    const std::size_t one_thread_row = rows.size();
     for (const unsigned int threads : {1u, all_threads})
       {
         MultithreadInfo::set_thread_limit(threads);
@@ -526,6 +527,7 @@ namespace tissuefem::problems
     print_targets(rows,
                   floor_difference >= 0,
                   all_threads,
+                  one_thread_row,
                   all_thread_row,
                   targets.tangent_us,
                   targets.floor_ratio);

@@ -212,15 +212,15 @@ namespace tissuefem::solid
   void
   Discretization<dim>::initialize_assembly_vector(VectorType &v) const
   {
-    // Rows owned elsewhere go to Epetra_FEVector's own list of the entries
-    // actually written, which compress() sends: the layer of rows shared
-    // with other processes. A vector made writable on the locally relevant
-    // rows instead exports all of them at every compress(), and on a
-    // shared mesh (every cell a ghost) those are all rows: an explicit step
-    // on two processes took as long as on one (doc/studies.md, Step time
-    // against size). Writes outside that set would also be unchecked in
-    // Release builds.
-    v.reinit(locally_owned, parallel_tools::communicator());
+    // The owned rows only: rows owned elsewhere go to Epetra_FEVector's own
+    // list of the entries actually written, which compress() sends: the
+    // layer of rows shared with other processes. A vector made writable on
+    // the locally relevant rows instead exports all of them at every
+    // compress(), and on a shared mesh (every cell a ghost) those are all
+    // rows: an explicit step on two processes took as long as on one
+    // (doc/studies.md, Step time against size). Writes outside that set
+    // would also be unchecked in Release builds.
+    initialize_vector(v);
   }
 
   template <int dim>
